@@ -1,0 +1,178 @@
+"""Turn a validated Scene into the objects that compute: gas model, cavities, inflators, exchanges, network."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from cavity.cavity import Cavity
+from cavity.gas import GasModel
+from cavity.inflator import MassTemperatureInflator, TankTestInflator
+from cavity.integration import SolverOptions
+from cavity.species import Species, builtin_species, species_from_coolprop
+from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, TableVolume, closed_mesh_volume
+from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
+from exchange.vent import Ambient, Exchange, OrificeLaw
+
+from .errors import SceneError
+from .scene import Scene
+from .tables_io import read_table
+
+__all__ = ["Model", "build_model"]
+
+
+@dataclass
+class Model:
+    """Everything needed to run a scene: the network, the solver options, the time axis, what was modelled."""
+
+    scene: Scene
+    network: Network
+    options: SolverOptions
+    output_times: np.ndarray
+    modelled: dict
+
+
+def build_model(scene: Scene) -> Model:
+    gas = GasModel(_species(scene))
+    amb = scene.ambient
+    y_amb = gas.mass_fractions(amb.gas, molar=amb.gas_by_mole)
+    ambient = Ambient(amb.pressure, amb.temperature, tuple(y_amb), gas.mixture(y_amb))
+    cavities = tuple(_cavity(scene, gas, i) for i in range(len(scene.cavity)))
+    names = [c.name for c in cavities]
+    exchanges = tuple(Exchange(e.name, names.index(e.from_), None if e.to == "ambient" else names.index(e.to),
+                               OrificeLaw(e.discharge_coefficient), e.area, e.two_way) for e in scene.exchange)
+    network = Network(gas, cavities, exchanges, ambient)
+    t_end = scene.time.end
+    dt = scene.time.output_interval or t_end / 500.0
+    n = max(2, int(math.floor(t_end / dt + 1e-9)) + 1)
+    times = np.unique(np.append(np.linspace(0.0, (n - 1) * dt, n), t_end))
+    s = scene.solver
+    options = SolverOptions(method=s.method, rtol=s.rtol, atol=(s.atol or s.rtol / 100) * _scales(network, t_end),
+                            max_step=s.max_step or math.inf)
+    return Model(scene, network, options, times, _modelled(scene, cavities))
+
+
+def _species(scene: Scene) -> tuple:
+    """Species named anywhere in the scene, from [[species]] or built in (CoolProp fit, or Abaqus air)."""
+    declared = {}
+    for i, sp in enumerate(scene.species):
+        where = f"species[{i}]"
+        if sp.coolprop:
+            try:
+                declared[sp.name] = species_from_coolprop(sp.coolprop, label=sp.name)
+            except ValueError as exc:
+                raise SceneError(scene.path, f"{where}.coolprop", str(exc)) from None
+        else:
+            if not sp.molar_mass or not sp.cp:
+                raise SceneError(scene.path, where, "give molar_mass [kg/mol] and cp [J/(mol K)...], or coolprop")
+            try:
+                declared[sp.name] = Species(sp.name, sp.molar_mass, tuple(sp.cp), source=f"{scene.path.name}")
+            except (ValueError, TypeError) as exc:
+                raise SceneError(scene.path, f"{where}.cp", str(exc)) from None
+    used = {}
+    for where, comp in _compositions(scene):
+        for name in comp:
+            used.setdefault(name, where)
+    out = []
+    for name, where in used.items():
+        if name in declared:
+            out.append(declared[name])
+            continue
+        try:
+            out.append(builtin_species(name))
+        except ValueError:
+            raise SceneError(scene.path, f"{where}.{name}", f"unknown species {name!r}: declare it in [[species]] "
+                                                            "(molar_mass and cp, or a CoolProp name)") from None
+    return tuple(out)
+
+
+def _compositions(scene: Scene):
+    yield "ambient.gas", scene.ambient.gas
+    for i, c in enumerate(scene.cavity):
+        yield f"cavity[{i}].gas", c.gas
+        for j, inf in enumerate(c.inflator):
+            yield f"cavity[{i}].inflator[{j}].gas", inf.gas
+
+
+def _volume(scene: Scene, i: int):
+    c, where = scene.cavity[i], f"cavity[{i}]"
+    if c.volume:
+        return FixedVolume(c.volume)
+    if c.volume_table:
+        return TableVolume(read_table(scene.base / c.volume_table, scene.path, f"{where}.volume_table",
+                                      "volume [m^3]"))
+    import trimesh
+
+    try:
+        mesh = trimesh.load(scene.base / c.mesh, force="mesh", process=True)
+        v = closed_mesh_volume(mesh, name=c.mesh)
+    except MeshError as exc:
+        raise SceneError(scene.path, f"{where}.mesh", str(exc)) from None
+    except Exception as exc:  # trimesh raises many types for unreadable files
+        raise SceneError(scene.path, f"{where}.mesh", f"cannot read mesh {c.mesh!r}: {exc}") from None
+    if not c.mesh_scale_table:
+        return FixedVolume(v)
+    scale = read_table(scene.base / c.mesh_scale_table, scene.path, f"{where}.mesh_scale_table", "scale [-]")
+    return ScaledMeshVolume(v, scale)
+
+
+def _cavity(scene: Scene, gas: GasModel, i: int) -> Cavity:
+    c = scene.cavity[i]
+    volume = _volume(scene, i)
+    y = gas.mass_fractions(c.gas, molar=c.gas_by_mole)
+    V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
+    masses = gas.masses_at(y, c.pressure, c.temperature, V0)
+    inflators = tuple(_inflator(gas, inf) for inf in c.inflator)
+    return Cavity(c.name, volume, tuple(masses), c.temperature, c.energy, c.added_volume, c.minimum_volume,
+                  c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, inflators)
+
+
+def _inflator(gas: GasModel, inf):
+    y = gas.mass_fractions(inf.gas, molar=inf.gas_by_mole)
+    mix = gas.mixture(y)  # 1 kg of inflator gas
+    if inf.type == "mass_temperature":
+        return MassTemperatureInflator(inf.name, inf.mass_flow, inf.temperature, tuple(y), mix, inf.start, inf.scale)
+    return TankTestInflator(inf.name, inf.tank_pressure, inf.tank_volume, inf.temperature, tuple(y), mix,
+                            inf.start, inf.scale)
+
+
+def _scales(network: Network, t_end: float) -> np.ndarray:
+    """A magnitude for every unknown (kg for masses, J for energies), for absolute tolerances."""
+    y0 = network.initial_state()
+    scale = np.zeros_like(y0)
+    ns = len(network.gas.species)
+    mass_scales, energy_scales = [], []
+    for cav, k in zip(network.cavities, network.offsets):
+        inflated = sum(inf.mass_between(0.0, t_end) for inf in cav.inflators)
+        m = float(np.sum(y0[k:k + ns])) + inflated
+        h_in = max((inf.gas.enthalpy(inf.temperature(0.0)) for inf in cav.inflators), default=0.0)
+        e = abs(y0[k + ns]) if not cav.isothermal else 0.0
+        e = max(e, inflated * h_in, m * 1e5)
+        scale[k:k + ns] = m
+        if not cav.isothermal:
+            scale[k + ns] = e
+        mass_scales.append(m)
+        energy_scales.append(e)
+    m_all, e_all = max(mass_scales), max(energy_scales)
+    j = network.ledger_offset
+    for _ in network.exchanges:
+        scale[j:j + LEDGER_PER_EXCHANGE] = (m_all, e_all)
+        j += LEDGER_PER_EXCHANGE
+    for m, e in zip(mass_scales, energy_scales):
+        scale[j:j + LEDGER_PER_CAVITY] = (m, e, e, e)
+        j += LEDGER_PER_CAVITY
+    return scale
+
+
+def _modelled(scene: Scene, cavities) -> dict:
+    """What this scene modelled (and therefore what it did not), for summary.json."""
+    return {
+        "cavities": {c.name: {"energy": c.energy, "volume": type(c.volume).__name__,
+                              "inflators": [type(i).__name__ for i in c.inflators]} for c in cavities},
+        "exchanges": {e.name: {"law": e.law, "to": e.to, "two_way": e.two_way, "area": "fixed"}
+                      for e in scene.exchange},
+        "gas": "ideal-gas mixture, species masses tracked",
+        "geometry": "none" if all(not c.mesh for c in scene.cavity) else "closed mesh volume",
+        "blockage": "not modelled", "bodies": "none", "contact": "not modelled",
+    }

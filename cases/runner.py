@@ -1,0 +1,126 @@
+"""Run a scene: build the model, integrate it, and reduce the trajectory to a history and a summary."""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from cavity.integration import Trajectory, integrate
+from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
+
+from .build import Model, build_model
+from .scene import Scene, load_scene
+
+__all__ = ["Results", "run", "run_scene", "history_columns"]
+
+
+@dataclass
+class Results:
+    """A finished run: the sampled history (columns with units), the summary, and the raw trajectory."""
+
+    model: Model
+    trajectory: Trajectory
+    columns: list
+    history: np.ndarray
+    summary: dict = field(default_factory=dict)
+
+    def column(self, name: str) -> np.ndarray:
+        """One history column by its name without the unit, e.g. ``"tank.pressure"``."""
+        for i, c in enumerate(self.columns):
+            if c.split(" [")[0] == name:
+                return self.history[:, i]
+        raise KeyError(f"no column {name!r}; columns: {', '.join(self.columns)}")
+
+
+def history_columns(model: Model) -> list:
+    cols = ["time [s]"]
+    for c in model.network.cavities:
+        cols += [f"{c.name}.pressure [Pa]", f"{c.name}.temperature [K]", f"{c.name}.mass [kg]",
+                 f"{c.name}.volume [m^3]"]
+    for e in model.network.exchanges:
+        cols += [f"{e.name}.mass_flow [kg/s]", f"{e.name}.area [m^2]"]
+    return cols
+
+
+def quantities(model: Model, t: float, y) -> list:
+    """One history row at (t, y)."""
+    net = model.network
+    states = net.states(t, y)
+    row = [t]
+    for s in states:
+        row += [s.pressure, s.temperature, s.mixture.mass, s.volume]
+    for j, (mdot, _) in enumerate(net.exchange_flows(t, states)):
+        row += [mdot, net.exchange_area(j, t)]
+    return row
+
+
+def pressure_at(model: Model, traj: Trajectory, i: int, t: float) -> float:
+    return model.network.states(t, traj(t))[i].pressure
+
+
+def peak_pressure(model: Model, traj: Trajectory, i: int) -> tuple[float, float]:
+    """Largest pressure of cavity i and its time, refined on the dense output (independent of output times)."""
+    ts = np.unique(np.concatenate([traj.step_times, [s.t_min for s in traj.segments], [traj.t_final]]))
+    ps = np.array([pressure_at(model, traj, i, t) for t in ts])
+    k = int(np.argmax(ps))
+    best = (float(ps[k]), float(ts[k]))
+    lo, hi = ts[max(k - 1, 0)], ts[min(k + 1, len(ts) - 1)]
+    if hi > lo:
+        res = minimize_scalar(lambda t: -pressure_at(model, traj, i, t), bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-14 * max(1.0, hi)})
+        if -res.fun > best[0]:
+            best = (float(-res.fun), float(res.x))
+    return best
+
+
+def mass_balance(model: Model, y0, y1) -> dict:
+    """Per cavity: initial + inflow − outflow − final, and its size relative to the mass handled [kg]."""
+    net, ns = model.network, len(model.network.gas.species)
+    out = {}
+    base = net.ledger_offset + LEDGER_PER_EXCHANGE * len(net.exchanges)
+    for i, (cav, k) in enumerate(zip(net.cavities, net.offsets)):
+        m0, m1 = float(np.sum(y0[k:k + ns])), float(np.sum(y1[k:k + ns]))
+        inflow = float(y1[base + LEDGER_PER_CAVITY * i])
+        net_exchange = 0.0
+        for j, ex in enumerate(net.exchanges):
+            m_ex = float(y1[net.ledger_offset + LEDGER_PER_EXCHANGE * j])
+            net_exchange += (-m_ex if ex.upstream == i else 0.0) + (m_ex if ex.downstream == i else 0.0)
+        err = m0 + inflow + net_exchange - m1
+        out[cav.name] = {"initial [kg]": m0, "inflow [kg]": inflow, "exchanged in [kg]": net_exchange,
+                         "final [kg]": m1, "imbalance [kg]": err,
+                         "relative imbalance [-]": abs(err) / max(m0 + inflow, abs(net_exchange), 1e-300)}
+    return out
+
+
+def run(model: Model, *, progress: bool = False) -> Results:
+    """Integrate a built model and reduce it."""
+    net = model.network
+    y0 = net.initial_state()
+    t_end = model.scene.time.end
+    start = time.perf_counter()
+    traj = integrate(net, y0, 0.0, t_end, model.options, progress=progress)
+    wall = time.perf_counter() - start
+    ys = traj.sample(model.output_times)
+    history = np.array([quantities(model, t, y) for t, y in zip(model.output_times, ys)])
+    y1 = traj(t_end)
+    summary = {"title": model.scene.title, "scene": str(model.scene.path), "end time [s]": t_end,
+               "cavities": {}, "mass balance": mass_balance(model, y0, y1),
+               "solver": {"method": model.options.method, "rtol": model.options.rtol, **traj.stats,
+                          "wall time [s]": wall, "event log": [[t, label] for t, label in traj.events]},
+               "modelled": model.modelled}
+    for i, cav in enumerate(net.cavities):
+        p, tp = peak_pressure(model, traj, i)
+        final = net.states(t_end, y1)[i]
+        summary["cavities"][cav.name] = {"peak pressure [Pa]": p, "peak pressure time [s]": tp,
+                                         "final pressure [Pa]": final.pressure,
+                                         "final temperature [K]": final.temperature,
+                                         "final mass [kg]": final.mixture.mass}
+    return Results(model, traj, history_columns(model), history, summary)
+
+
+def run_scene(path_or_scene, *, progress: bool = False) -> Results:
+    """Load (if given a path), build and run a scene."""
+    scene = path_or_scene if isinstance(path_or_scene, Scene) else load_scene(path_or_scene)
+    return run(build_model(scene), progress=progress)

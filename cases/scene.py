@@ -1,0 +1,237 @@
+"""Scene files: TOML validated once into frozen dataclasses (what to simulate, not how it is computed).
+
+Every key's unit and meaning is declared next to it (``key(doc, unit)``); ``docs/scenes.md`` documents the
+format. :func:`load_scene` turns any problem into a one-line :class:`SceneError` naming the file and the key.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from cavity.integration import METHODS
+from cavity.tables import TableError
+
+from .errors import SceneError
+from .schema import key, parse, suggest
+from .tables_io import read_table, table_or_constant
+
+__all__ = ["Scene", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
+           "ExchangeSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
+
+ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
+LAWS = ("orifice",)
+INFLATOR_TYPES = ("mass_temperature", "tank_test")
+
+
+@dataclass(frozen=True, kw_only=True)
+class TimeSpec:
+    end: float = key("end time of the run", "s", check="positive")
+    output_interval: float = key("interval between rows of history.csv (0: end/500); does not affect the "
+                                 "solution", "s", default=0.0, check="nonnegative")
+
+
+@dataclass(frozen=True, kw_only=True)
+class SolverSpec:
+    method: str = key("scipy solve_ivp method", default="DOP853", choices=METHODS)
+    rtol: float = key("relative tolerance", default=1e-8, check="positive")
+    atol: float = key("absolute tolerance as a fraction of each unknown's scale (initial plus inflated mass, "
+                      "and the matching energy); 0: rtol/100", default=0.0, check="nonnegative")
+    max_step: float = key("largest step (0: unlimited)", "s", default=0.0, check="nonnegative")
+
+
+@dataclass(frozen=True, kw_only=True)
+class AmbientSpec:
+    pressure: float = key("ambient pressure", "Pa", default=101325.0, check="positive")
+    temperature: float = key("ambient temperature", "K", default=293.15, check="positive")
+    gas: dict = key("composition {species = fraction}", default={"air": 1.0})
+    gas_by_mole: bool = key("fractions in `gas` are molar, not by mass", default=False)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SpeciesSpec:
+    name: str = key("name used in `gas` tables")
+    molar_mass: float = key("molar mass", "kg/mol", default=0.0, check="nonnegative")
+    cp: tuple = key("molar cp polynomial a, b, c, d, e (, f): a + bT + cT² + dT³ + e/T² (+ fT⁴)",
+                    "J/(mol K), J/(mol K²), ...", default=())
+    coolprop: str = key("CoolProp fluid name; cp0(T) fitted once at load (instead of molar_mass and cp)",
+                        default="")
+
+
+@dataclass(frozen=True, kw_only=True)
+class InflatorSpec:
+    name: str = key("inflator name")
+    type: str = key("inflator type", choices=INFLATOR_TYPES)
+    temperature: object = key("inflator gas temperature: a number or a CSV table (time [s], T [K])", "K")
+    mass_flow: object = key("mass_temperature: CSV table (time [s], mass flow [kg/s]) or a number", "kg/s",
+                            default=None)
+    tank_pressure: object = key("tank_test: CSV table (time [s], tank pressure [Pa])", "Pa", default=None)
+    tank_volume: float = key("tank_test: tank volume", "m^3", default=0.0, check="nonnegative")
+    gas: dict = key("inflator gas composition {species = fraction}", default={"N2": 1.0})
+    gas_by_mole: bool = key("fractions in `gas` are molar", default=False)
+    start: float = key("activation time; tables are relative to it", "s", default=0.0, check="nonnegative")
+    scale: float = key("multiplier on the mass flow", default=1.0, check="nonnegative")
+
+
+@dataclass(frozen=True, kw_only=True)
+class CavitySpec:
+    name: str = key("cavity name (column prefix in history.csv)")
+    pressure: float = key("initial pressure", "Pa", check="positive")
+    temperature: float = key("initial temperature (constant when isothermal)", "K", check="positive")
+    gas: dict = key("initial composition {species = fraction}", default={"air": 1.0})
+    gas_by_mole: bool = key("fractions in `gas` are molar", default=False)
+    energy: str = key("energy model", default="adiabatic", choices=ENERGY_MODELS)
+    volume: float = key("rigid volume (give one of volume, volume_table, mesh)", "m^3", default=0.0,
+                        check="nonnegative")
+    volume_table: str = key("CSV table (time [s], volume [m^3])", default="")
+    mesh: str = key("closed triangle mesh file (any format trimesh reads), coordinates in metres", default="")
+    mesh_scale_table: str = key("CSV table (time [s], uniform scale factor [-]) applied to `mesh`", default="")
+    added_volume: float = key("volume added to the geometric volume", "m^3", default=0.0, check="nonnegative")
+    minimum_volume: float = key("volume used in the equation of state when V falls below it", "m^3",
+                                default=0.0, check="nonnegative")
+    heat_transfer_coefficient: float = key("heat_loss: h_c", "W/(m^2 K)", default=0.0, check="nonnegative")
+    heat_transfer_area: float = key("heat_loss: area A", "m^2", default=0.0, check="nonnegative")
+    inflator: tuple = key("inflators ([[cavity.inflator]] tables)", default=())
+
+
+@dataclass(frozen=True, kw_only=True)
+class ExchangeSpec:
+    name: str = key("exchange name (column prefix in history.csv)")
+    from_: str = key("upstream cavity", toml="from")
+    to: str = key("downstream cavity, or 'ambient'", default="ambient")
+    law: str = key("flow law", default="orifice", choices=LAWS)
+    area: float = key("flow area", "m^2", check="nonnegative")
+    discharge_coefficient: float = key("discharge coefficient Cd", default=1.0, check="positive")
+    two_way: bool = key("to ambient: let ambient gas flow back in when the cavity is below ambient",
+                        default=False)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Scene:
+    title: str = key("what the scene is", default="")
+    time: TimeSpec = key("[time] table")
+    solver: SolverSpec = key("[solver] table", default=SolverSpec())
+    ambient: AmbientSpec = key("[ambient] table", default=AmbientSpec())
+    species: tuple = key("[[species]] tables: user gas data", default=())
+    cavity: tuple = key("[[cavity]] tables")
+    exchange: tuple = key("[[exchange]] tables", default=())
+    _path: str = ""
+
+    @property
+    def path(self) -> Path:
+        """The scene file."""
+        return Path(self._path)
+
+    @property
+    def base(self) -> Path:
+        """The folder relative file names are read from."""
+        return self.path.parent
+
+
+def load_scene(path) -> Scene:
+    """Read and validate a scene file; every table it names is read and checked too."""
+    path = Path(path)
+    if not path.is_file():
+        raise SceneError(path, "", "scene file does not exist")
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(path, "", f"not valid TOML: {exc}") from None
+    return scene_from_dict(data, path)
+
+
+def scene_from_dict(data: dict, path) -> Scene:
+    """Validate an already-parsed scene (the TOML's dict); ``path`` anchors relative file names."""
+    path = Path(path)
+    base = path.parent
+
+    def many(spec_cls, nested=None):
+        def convert(value, where):
+            if not isinstance(value, list):
+                raise SceneError(path, where, "expected a list of tables ([[...]])")
+            items = tuple(parse(spec_cls, v, path, f"{where}[{i}]", nested=nested) for i, v in enumerate(value))
+            names = [getattr(it, "name") for it in items]
+            dup = next((n for n in names if names.count(n) > 1), None)
+            if dup is not None:
+                raise SceneError(path, where, f"the name {dup!r} is used twice")
+            return items
+        return convert
+
+    def composition(value, where):
+        if not isinstance(value, dict) or not value:
+            raise SceneError(path, where, "expected a table {species = fraction}")
+        for k, v in value.items():
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v >= 0):
+                raise SceneError(path, f"{where}.{k}", f"expected a fraction >= 0, got {v!r}")
+        if sum(value.values()) <= 0:
+            raise SceneError(path, where, "fractions sum to zero")
+        return dict(value)
+
+    def table(name):
+        return lambda v, where: None if v is None else table_or_constant(v, base, path, where, name)
+
+    inflator_nested = {"gas": composition, "temperature": table("temperature [K]"),
+                       "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]")}
+    cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested)}
+    scene = parse(Scene, data, path, "", nested={
+        "time": lambda v, w: parse(TimeSpec, v, path, w),
+        "solver": lambda v, w: parse(SolverSpec, v, path, w),
+        "ambient": lambda v, w: parse(AmbientSpec, v, path, w, nested={"gas": composition}),
+        "species": many(SpeciesSpec, {"cp": lambda v, w: tuple(v)}),
+        "cavity": many(CavitySpec, cavity_nested),
+        "exchange": many(ExchangeSpec),
+    })
+    scene = replace(scene, _path=str(path))
+    _check_cross_references(scene, path)
+    return scene
+
+
+def _check_cross_references(scene: Scene, path) -> None:
+    """Keys that refer to other things (cavity names, volume sources, per-type inflator keys) agree."""
+    names = [c.name for c in scene.cavity]
+    if not names:
+        raise SceneError(path, "cavity", "a scene needs at least one [[cavity]]")
+    for i, c in enumerate(scene.cavity):
+        where = f"cavity[{i}]"
+        given = [k for k in ("volume", "volume_table", "mesh") if getattr(c, k)]
+        if len(given) != 1:
+            raise SceneError(path, where, f"give exactly one of volume, volume_table, mesh (got {given or 'none'})")
+        if c.mesh_scale_table and not c.mesh:
+            raise SceneError(path, f"{where}.mesh_scale_table", "needs `mesh`")
+        for f in ("volume_table", "mesh", "mesh_scale_table"):
+            if getattr(c, f) and not (scene.base / getattr(c, f)).is_file():
+                raise SceneError(path, f"{where}.{f}", f"file {getattr(c, f)!r} does not exist")
+        if c.volume_table:
+            _require(read_table(scene.base / c.volume_table, path, f"{where}.volume_table", "volume [m^3]"),
+                     path, f"{where}.volume_table", positive=True)
+        if c.energy == "heat_loss" and not (c.heat_transfer_coefficient and c.heat_transfer_area):
+            raise SceneError(path, f"{where}.energy", "heat_loss needs heat_transfer_coefficient and "
+                                                      "heat_transfer_area > 0")
+        for j, inf in enumerate(c.inflator):
+            _check_inflator(inf, path, f"{where}.inflator[{j}]")
+    for i, e in enumerate(scene.exchange):
+        for side, value in (("from", e.from_), ("to", e.to)):
+            if value not in names and not (side == "to" and value == "ambient"):
+                raise SceneError(path, f"exchange[{i}].{side}", f"no cavity named {value!r}"
+                                                                f"{suggest(value, names + ['ambient'])}")
+        if e.from_ == e.to:
+            raise SceneError(path, f"exchange[{i}].to", "an exchange joins two different sides")
+
+
+def _check_inflator(inf: InflatorSpec, path, where: str) -> None:
+    needed = {"mass_temperature": ("mass_flow",), "tank_test": ("tank_pressure", "tank_volume")}[inf.type]
+    for k in needed:
+        if not getattr(inf, k):
+            raise SceneError(path, f"{where}.{k}", f"required for an inflator of type {inf.type!r}")
+    _require(inf.temperature, path, f"{where}.temperature", positive=True)
+    if inf.mass_flow is not None:
+        _require(inf.mass_flow, path, f"{where}.mass_flow", minimum=0.0)
+
+
+def _require(table, path, where, **bounds):
+    """Check a table's values against ``bounds`` (see Table.require), as a SceneError."""
+    try:
+        table.require(**bounds)
+    except TableError as exc:
+        raise SceneError(path, where, str(exc)) from None

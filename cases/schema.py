@@ -1,0 +1,104 @@
+"""Parse TOML tables into frozen dataclasses, field by field, with units and 'did you mean' suggestions.
+
+A spec class declares each key as a dataclass field whose metadata holds its unit and its documentation
+(``key(...)``). :func:`parse` checks a TOML table against it: unknown keys are rejected with the closest known
+names, missing required keys are named, and each value is checked for type, finiteness and sign.
+"""
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import MISSING, field, fields
+
+from .errors import SceneError
+
+__all__ = ["key", "parse", "describe_spec", "suggest"]
+
+
+def key(doc: str, unit: str = "-", *, default=MISSING, check: str | None = None, choices=None, toml: str = ""):
+    """A scene key: its documentation, unit (``"Pa"``, ``"m^3"``, ``"-"``), default, and check.
+
+    ``check`` is one of ``"positive"``, ``"nonnegative"``, ``"fraction"``; ``choices`` a tuple of allowed strings;
+    ``toml`` the key's name in the file when it differs from the field name (``from`` is a Python keyword).
+    """
+    meta = {"doc": doc, "unit": unit, "check": check, "choices": choices, "toml": toml}
+    if isinstance(default, (list, dict)):
+        return field(default_factory=lambda d=default: type(d)(d), metadata=meta)
+    return field(default=default, metadata=meta)
+
+
+def toml_name(f) -> str:
+    return f.metadata.get("toml") or f.name
+
+
+def suggest(name: str, known) -> str:
+    """' (did you mean 'x'?)' for the closest known names, or ''.
+
+    >>> suggest("presure", ["pressure", "temperature"])
+    " (did you mean 'pressure'?)"
+    """
+    close = difflib.get_close_matches(name, list(known), n=2, cutoff=0.6)
+    return f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
+
+
+def parse(cls, table, file, where: str, *, nested: dict | None = None):
+    """Build ``cls`` from the TOML table ``table``; raise :class:`SceneError` naming file and key on any problem.
+
+    ``nested`` maps a field name to a function ``(value, where) -> object`` for sub-tables and lists of tables.
+    """
+    nested = nested or {}
+    if not isinstance(table, dict):
+        raise SceneError(file, where, f"expected a table of keys, got {type(table).__name__}")
+    by_toml = {toml_name(f): f for f in fields(cls) if f.init and not f.name.startswith("_")}
+    for name in table:
+        if name not in by_toml:
+            raise SceneError(file, f"{where}.{name}" if where else name,
+                             f"unknown key{suggest(name, by_toml)}; known keys: {', '.join(sorted(by_toml))}")
+    values = {}
+    for tname, f in by_toml.items():
+        here = f"{where}.{tname}" if where else tname
+        if tname not in table:
+            if f.default is MISSING and f.default_factory is MISSING:
+                raise SceneError(file, here, f"missing required key ({f.metadata.get('doc', '')} "
+                                             f"[{f.metadata.get('unit', '-')}])")
+            continue
+        value = table[tname]
+        values[f.name] = nested[f.name](value, here) if f.name in nested else _checked(value, f, file, here)
+    return cls(**values)
+
+
+def _checked(value, f, file, where):
+    meta, unit = f.metadata, f.metadata.get("unit", "-")
+    if meta.get("choices") is not None:
+        if value not in meta["choices"]:
+            raise SceneError(file, where, f"expected one of {', '.join(map(repr, meta['choices']))}, got {value!r}"
+                             f"{suggest(str(value), meta['choices'])}")
+        return value
+    check = meta.get("check")
+    if check is None:
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SceneError(file, where, f"expected a number [{unit}], got {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise SceneError(file, where, f"expected a finite number [{unit}], got {value!r}")
+    if check == "positive" and not value > 0:
+        raise SceneError(file, where, f"expected a number > 0 [{unit}], got {value!r}")
+    if check == "nonnegative" and not value >= 0:
+        raise SceneError(file, where, f"expected a number >= 0 [{unit}], got {value!r}")
+    if check == "fraction" and not 0 <= value <= 1:
+        raise SceneError(file, where, f"expected a number in [0, 1] [{unit}], got {value!r}")
+    return value
+
+
+def describe_spec(cls, prefix: str = "") -> str:
+    """A Markdown table of the keys of ``cls`` (key, unit, default, meaning), for docs/scenes.md."""
+    rows = ["| key | unit | default | meaning |", "|---|---|---|---|"]
+    for f in fields(cls):
+        if not f.init or f.name.startswith("_"):
+            continue
+        default = "required" if f.default is MISSING and f.default_factory is MISSING else (
+            repr(f.default) if f.default is not MISSING else repr(f.default_factory()))
+        rows.append(f"| `{prefix}{toml_name(f)}` | {f.metadata.get('unit', '-')} | {default} | "
+                    f"{f.metadata.get('doc', '')} |")
+    return "\n".join(rows)

@@ -1,0 +1,137 @@
+"""A uniform-pressure gas cavity: its definition, its state from the ODE unknowns, and its own rates.
+
+Unknowns of one cavity: the mass of every species [kg] and, unless isothermal, the internal energy U [J].
+Energy balance of the control volume (open system, moving boundary):
+
+    dU/dt = Σ ṁ_in h_in − Σ ṁ_out h_out − p dV/dt − h_c A (T − T_amb)
+
+with h the specific enthalpy of the gas that crosses the boundary (the inflator's at its temperature, the
+upstream cavity's for an exchange). Isothermal cavities keep T fixed and carry no energy unknown
+(Abaqus: an ideal-gas cavity is isothermal unless ADIABATIC is set).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .gas import GasModel, Mixture
+from .tolerances import R_UNIVERSAL
+from .volume import effective_volume
+
+__all__ = ["Cavity", "CavityState", "ENERGY_MODELS"]
+
+ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
+
+
+@dataclass(frozen=True)
+class Cavity:
+    """Definition of one gas cavity.
+
+    Attributes
+    ----------
+    name : str
+    volume : volume model
+        ``FixedVolume``, ``TableVolume`` or ``ScaledMeshVolume`` (anything with ``__call__(t)``, ``rate(t)``,
+        ``breakpoints``) [m^3].
+    initial_masses : (ns,) float
+        Initial mass of each species [kg].
+    initial_temperature : float
+        Initial (and, when isothermal, constant) temperature [K].
+    energy : str
+        ``"adiabatic"``, ``"isothermal"`` or ``"heat_loss"``.
+    added_volume : float
+        Volume added to the geometric volume [m^3].
+    minimum_volume : float
+        Volume used in the equation of state when the total falls below it [m^3].
+    heat_transfer_coefficient : float
+        h_c [W/(m^2 K)] (heat_loss only).
+    heat_transfer_area : float
+        A [m^2] (heat_loss only).
+    ambient_temperature : float
+        T_amb [K] for heat loss.
+    inflators : tuple
+        Inflator objects feeding this cavity.
+    """
+
+    name: str
+    volume: object
+    initial_masses: tuple
+    initial_temperature: float
+    energy: str = "adiabatic"
+    added_volume: float = 0.0
+    minimum_volume: float = 0.0
+    heat_transfer_coefficient: float = 0.0
+    heat_transfer_area: float = 0.0
+    ambient_temperature: float = 293.15
+    inflators: tuple = ()
+
+    @property
+    def isothermal(self) -> bool:
+        return self.energy == "isothermal"
+
+    @property
+    def n_unknowns(self) -> int:
+        return len(self.initial_masses) + (0 if self.isothermal else 1)
+
+    def total_volume(self, t: float) -> float:
+        """Geometric plus added volume [m^3]."""
+        return self.volume(t) + self.added_volume
+
+    def initial_unknowns(self, gas: GasModel) -> np.ndarray:
+        m = np.asarray(self.initial_masses, dtype=float)
+        if self.isothermal:
+            return m.copy()
+        return np.append(m, gas.mixture(m).internal_energy(self.initial_temperature))
+
+    @property
+    def breakpoints(self) -> tuple:
+        return tuple(self.volume.breakpoints) + tuple(b for inf in self.inflators for b in inf.breakpoints)
+
+    def heat_loss(self, T: float) -> float:
+        """Heat flow out of the cavity h_c·A·(T − T_amb) [W]; 0 unless the energy model is heat_loss."""
+        if self.energy != "heat_loss":
+            return 0.0
+        return self.heat_transfer_coefficient * self.heat_transfer_area * (T - self.ambient_temperature)
+
+
+@dataclass
+class CavityState:
+    """The gas state of a cavity at one instant (derived from the unknowns; not stored in the ODE)."""
+
+    masses: np.ndarray
+    mixture: Mixture
+    temperature: float
+    volume: float
+    volume_rate: float
+    pressure: float
+
+    @classmethod
+    def of(cls, cavity: Cavity, gas: GasModel, t: float, unknowns, T_guess: float) -> "CavityState":
+        """State of ``cavity`` at time t from its slice of the ODE unknowns.
+
+        Masses that integration error drove slightly negative are clipped at zero for the equation of state.
+        """
+        ns = len(cavity.initial_masses)
+        masses = np.maximum(unknowns[:ns], 0.0)
+        mix = gas.mixture(masses)
+        if cavity.isothermal:
+            T = cavity.initial_temperature
+        elif mix.moles > 0.0:
+            T = mix.temperature(unknowns[ns], T_guess)
+        else:
+            T = T_guess
+        V = cavity.total_volume(t)
+        V_eos = effective_volume(V, cavity.minimum_volume)
+        rate = cavity.volume.rate(t) if V > cavity.minimum_volume else 0.0
+        return cls(masses, mix, T, V, rate, mix.moles * R_UNIVERSAL * T / V_eos)
+
+    @property
+    def density(self) -> float:
+        """Mass over volume [kg/m^3]."""
+        return self.mixture.mass / self.volume
+
+    @property
+    def specific_enthalpy(self) -> float:
+        """Enthalpy per unit mass of the cavity gas [J/kg]."""
+        return self.mixture.enthalpy(self.temperature) / self.mixture.mass if self.mixture.mass > 0 else 0.0

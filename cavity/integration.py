@@ -1,0 +1,230 @@
+"""Integration of a cavity system: scipy's ``solve_ivp`` between discontinuities, restarted after each one.
+
+The model is not known here: a system gives a right-hand side, the times where its inputs have kinks
+(table breakpoints, start times: known in advance), and state events (a vent popping, a node touching) found by
+root finding on the dense output. The solver integrates up to each breakpoint or event and restarts after it,
+so no step ever straddles a discontinuity.
+"""
+from __future__ import annotations
+
+import math
+import sys
+import time as _time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+__all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS"]
+
+METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+
+
+class SolverError(RuntimeError):
+    """The integrator failed; the message names the time and the state where it stopped."""
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """How to integrate.
+
+    Attributes
+    ----------
+    method : str
+        One of scipy's ``solve_ivp`` methods (:data:`METHODS`).
+    rtol : float
+        Relative tolerance [-].
+    atol : float or (n,) float
+        Absolute tolerance per unknown, in the unknowns' units (kg, J, ...).
+    max_step : float
+        Largest step [s].
+    max_steps : int
+        Steps after which the run is declared stuck (no hang on a stiff or chattering scene).
+    """
+
+    method: str = "DOP853"
+    rtol: float = 1e-6
+    atol: object = 1e-12
+    max_step: float = math.inf
+    max_steps: int = 2_000_000
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"solver method must be one of {', '.join(METHODS)}; got {self.method!r}")
+        if not (0.0 < self.rtol < 1.0):
+            raise ValueError(f"rtol must be in (0, 1), got {self.rtol!r}")
+
+
+@dataclass
+class Trajectory:
+    """The solution as a chain of dense-output segments, with the solver's statistics and the event log."""
+
+    segments: list = field(default_factory=list)
+    step_times: list = field(default_factory=list)
+    events: list = field(default_factory=list)
+    stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
+                                                 "restarts": 0, "events": 0})
+    last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
+
+    def __call__(self, t: float) -> np.ndarray:
+        """State at time t (right limit at a breakpoint)."""
+        starts = [s.t_min for s in self.segments]
+        i = max(0, min(int(np.searchsorted(starts, t, side="right")) - 1, len(self.segments) - 1))
+        return self.segments[i](t)
+
+    def sample(self, times) -> np.ndarray:
+        """States at ``times`` (sorted), shape (len(times), n)."""
+        times = np.asarray(times, dtype=float)
+        starts = np.array([s.t_min for s in self.segments])
+        idx = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(self.segments) - 1)
+        out = np.empty((times.size, self.segments[0](self.segments[0].t_min).size))
+        for i in np.unique(idx):
+            sel = idx == i
+            out[sel] = self.segments[i](times[sel]).T
+        return out
+
+    @property
+    def t_final(self) -> float:
+        return self.segments[-1].t_max
+
+
+class _Progress:
+    """A progress bar on stderr, shown only when a run takes longer than ``delay`` seconds."""
+
+    def __init__(self, t0, t1, enabled, delay=1.0):
+        self.t0, self.t1, self.enabled, self.delay = t0, t1, enabled, delay
+        self.start = _time.perf_counter()
+        self.shown = False
+
+    def update(self, t):
+        if not self.enabled:
+            return
+        elapsed = _time.perf_counter() - self.start
+        if elapsed < self.delay:
+            return
+        frac = (t - self.t0) / (self.t1 - self.t0) if self.t1 > self.t0 else 1.0
+        bar = "#" * int(30 * frac)
+        sys.stderr.write(f"\r[{bar:<30}] {100 * frac:5.1f}%  t = {t:.6g} s  ({elapsed:.1f} s)")
+        sys.stderr.flush()
+        self.shown = True
+
+    def close(self):
+        if self.shown:
+            sys.stderr.write("\n")
+
+
+def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progress: bool = False) -> Trajectory:
+    """Integrate ``system`` from t0 to t1, stopping at its breakpoints and events.
+
+    Parameters
+    ----------
+    system : object
+        Has ``rhs(t, y) -> (n,) float``, ``breakpoints`` (iterable of times [s]), ``events() -> list`` of
+        scipy event functions (``terminal`` set, ``direction`` as needed) valid for the current discrete state,
+        ``on_event(t, y, index) -> (n,) float`` which applies the switch of event ``index`` (and may change what
+        ``events()`` returns), and ``describe(t, y) -> str`` for error messages.
+    y0 : (n,) float
+        Initial unknowns.
+    options : SolverOptions
+    progress : bool
+        Show a progress bar on stderr when the run takes more than a second.
+    """
+    traj = Trajectory()
+    bar = _Progress(t0, t1, progress)
+    stops = sorted({float(b) for b in system.breakpoints if t0 < b < t1} | {t1})
+    t, y = float(t0), np.asarray(y0, dtype=float)
+    try:
+        for stop in stops:
+            while t < stop:
+                t, y = _advance(system, t, y, stop, options, traj)
+                bar.update(t)
+    finally:
+        bar.close()
+    return traj
+
+
+def _directions(events, t, y, last) -> list:
+    """Crossing direction each switch function is watched for, away from its current sign.
+
+    The function that has just fired is watched for the opposite crossing, so a root located a rounding error
+    before the true crossing cannot fire again at the restart point.
+    """
+    dirs = []
+    for g in events:
+        label = getattr(g, "label", None)
+        if last is not None and label is not None and label == last[0] and t == last[1]:
+            dirs.append(-last[2])
+            continue
+        v = g(t, y)
+        dirs.append(1.0 if v < 0 else -1.0 if v > 0 else 0.0)
+    return dirs
+
+
+def _watched(g, direction):
+    def event(t, y):
+        return g(t, y)
+
+    event.terminal, event.direction = True, direction
+    event.label = getattr(g, "label", "event")
+    return event
+
+
+def _state_at_event(system, sol, t_event, options, traj):
+    """The state at an event time, integrated to it from the last accepted step rather than interpolated.
+
+    The dense output of a long step is accurate to a lower order than the steps themselves; restarting from it
+    would carry that interpolation error into everything after the event.
+    """
+    t_k, y_k = float(sol.t[-2]), sol.y[:, -2]
+    if t_event <= t_k:
+        return sol.y[:, -1]
+    tail = solve_ivp(system.rhs, (t_k, t_event), y_k, method=options.method, rtol=options.rtol, atol=options.atol,
+                     max_step=options.max_step, dense_output=True)
+    traj.stats["rhs_calls"] += tail.nfev
+    traj.stats["steps"] += len(tail.t) - 1
+    traj.segments.append(tail.sol)
+    traj.step_times.extend(tail.t[1:])
+    return tail.y[:, -1]
+
+
+def _advance(system, t, y, stop, options, traj):
+    """One solve_ivp call from t towards stop; returns where it ended (stop, or an event)."""
+    switches = system.events()
+    dirs = _directions(switches, t, y, traj.last_event)
+    events = [_watched(g, d) for g, d in zip(switches, dirs)]
+    remaining = options.max_steps - traj.stats["steps"]
+    if remaining <= 0:
+        raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
+    try:
+        sol = solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
+                        max_step=options.max_step, dense_output=True, events=events or None)
+    except (ArithmeticError, ValueError) as exc:
+        raise SolverError(f"the right-hand side failed near t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None
+    if sol.status == -1:
+        raise SolverError(f"{options.method} stopped at t = {sol.t[-1]:.9g} s: {sol.message}; "
+                          f"{system.describe(sol.t[-1], sol.y[:, -1])}")
+    if not np.all(np.isfinite(sol.y[:, -1])):
+        raise SolverError(f"non-finite state at t = {sol.t[-1]:.9g} s; {system.describe(sol.t[-1], sol.y[:, -1])}")
+    st = traj.stats
+    st["steps"] += len(sol.t) - 1
+    st["rhs_calls"] += sol.nfev
+    st["jacobians"] += sol.njev
+    st["lu_decompositions"] += sol.nlu
+    st["restarts"] += 1
+    traj.segments.append(sol.sol)
+    traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
+    t_end, y_end = float(sol.t[-1]), sol.y[:, -1]
+    traj.last_event = None
+    if sol.status == 1:
+        index = next(i for i, te in enumerate(sol.t_events) if len(te))
+        t_end = float(sol.t_events[index][0])
+        y_end = _state_at_event(system, sol, t_end, options, traj)
+        label = events[index].label
+        traj.events.append((t_end, label))
+        st["events"] += 1
+        y_end = np.asarray(system.on_event(t_end, y_end, label), dtype=float)
+        direction = dirs[index]
+        if direction == 0.0:  # watched both ways: the crossing leaves the sign g had before it
+            direction = -1.0 if switches[index](sol.t[-2], sol.y[:, -2]) > 0 else 1.0
+        traj.last_event = (label, t_end, direction)
+    return t_end, y_end

@@ -1,0 +1,206 @@
+"""Ideal-gas species: molar mass and the polynomial molar heat capacity, with its analytic integrals.
+
+c̃p(T) = a + bT + cT² + dT³ + e/T² + fT⁴  [J/(mol K)]  (Abaqus *CAPACITY, TYPE=POLYNOMIAL; f is Radioss's T⁴ term).
+The molar enthalpy and internal energy integrate it analytically (reference: the antiderivative's zero; any
+constant offset cancels from every energy balance because species are conserved).
+"""
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .tolerances import R_UNIVERSAL
+
+__all__ = ["Species", "molar_heat_capacity", "molar_enthalpy", "molar_internal_energy", "species_from_coolprop",
+           "builtin_species", "BUILTIN_COOLPROP_NAMES"]
+
+N_COEFFICIENTS = 6
+
+
+def molar_heat_capacity(coefficients, T: float) -> float:
+    r"""Molar isobaric heat capacity of the polynomial model [J/(mol K)].
+
+    .. math:: \tilde c_p(T) = a + bT + cT^2 + dT^3 + e/T^2 + fT^4
+
+    Parameters
+    ----------
+    coefficients : (6,) float
+        a [J/(mol K)], b [J/(mol K²)], c [J/(mol K³)], d [J/(mol K⁴)], e [J K/mol], f [J/(mol K⁵)].
+    T : float
+        Temperature [K].
+
+    References
+    ----------
+    Abaqus Analysis User's Guide, "Fluid cavity definition", *CAPACITY, TYPE=POLYNOMIAL.
+
+    Examples
+    --------
+    Air (Abaqus verification deck) at 300 K:
+
+    >>> round(molar_heat_capacity((28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0, 0.0), 300.0), 4)
+    29.0792
+    """
+    a, b, c, d, e, f = coefficients
+    return a + T * (b + T * (c + T * (d + T * f))) + e / (T * T)
+
+
+def molar_enthalpy(coefficients, T: float) -> float:
+    r"""Molar enthalpy, the antiderivative of :func:`molar_heat_capacity` [J/mol].
+
+    .. math:: \tilde h(T) = aT + bT^2/2 + cT^3/3 + dT^4/4 - e/T + fT^5/5
+
+    Examples
+    --------
+    With constant cp the enthalpy is a·T:
+
+    >>> molar_enthalpy((29.0, 0, 0, 0, 0, 0), 300.0)
+    8700.0
+    """
+    a, b, c, d, e, f = coefficients
+    return T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T
+
+
+def molar_internal_energy(coefficients, T: float) -> float:
+    r"""Molar internal energy of an ideal gas, :math:`\tilde u = \tilde h - R_u T` [J/mol].
+
+    >>> round(molar_internal_energy((29.0, 0, 0, 0, 0, 0), 300.0), 6)
+    6205.661215
+    """
+    return molar_enthalpy(coefficients, T) - R_UNIVERSAL * T
+
+
+@dataclass(frozen=True)
+class Species:
+    """One ideal-gas species with a piecewise-polynomial molar heat capacity.
+
+    Attributes
+    ----------
+    name : str
+        Name used in scene files.
+    molar_mass : float
+        Molar mass M [kg/mol], > 0.
+    cp_coefficients : tuple of 6 float
+        Polynomial coefficients (a, b, c, d, e, f) of the molar heat capacity (see :func:`molar_heat_capacity`);
+        fewer than 6 are padded with zeros. Used on the whole temperature axis unless ``breaks`` is given.
+    breaks : tuple of float
+        Interior temperatures [K] where the polynomial changes (empty for one polynomial).
+    pieces : tuple of tuples
+        With ``breaks``: len(breaks) + 1 coefficient 6-tuples, one per range; ``cp_coefficients`` is then piece 0.
+    source : str
+        Where the data came from (a scene, a built-in, a CoolProp fit and its error).
+
+    Examples
+    --------
+    >>> s = Species("N2", 0.028, (29.1,))
+    >>> round(s.gas_constant, 3), round(s.gamma(300.0), 4)
+    (296.945, 1.4000)
+    """
+
+    name: str
+    molar_mass: float
+    cp_coefficients: tuple[float, ...]
+    source: str = "user"
+    breaks: tuple[float, ...] = ()
+    pieces: tuple[tuple[float, ...], ...] = ()
+
+    def __post_init__(self):
+        pieces = self.pieces or (self.cp_coefficients,)
+        if len(pieces) != len(self.breaks) + 1:
+            raise ValueError(f"species {self.name!r}: {len(self.breaks)} breaks need {len(self.breaks) + 1} pieces")
+        if any(b1 <= b0 for b0, b1 in zip(self.breaks[:-1], self.breaks[1:])):
+            raise ValueError(f"species {self.name!r}: breaks must be strictly increasing temperatures [K]")
+        padded = tuple(_padded(self.name, p) for p in pieces)
+        if not (math.isfinite(self.molar_mass) and self.molar_mass > 0.0):
+            raise ValueError(f"species {self.name!r}: molar mass must be > 0 [kg/mol], got {self.molar_mass!r}")
+        object.__setattr__(self, "pieces", padded)
+        object.__setattr__(self, "cp_coefficients", padded[0])
+        object.__setattr__(self, "breaks", tuple(float(b) for b in self.breaks))
+        if self.molar_cp(300.0) <= R_UNIVERSAL:
+            raise ValueError(f"species {self.name!r}: cp(300 K) must exceed R = {R_UNIVERSAL} J/(mol K) "
+                             "so that cv > 0")
+
+    def piece(self, T: float) -> tuple[float, ...]:
+        """The coefficient 6-tuple in force at T."""
+        return self.pieces[bisect.bisect_right(self.breaks, T)]
+
+    def molar_cp(self, T: float) -> float:
+        """Molar heat capacity at constant pressure [J/(mol K)]."""
+        return molar_heat_capacity(self.piece(T), T)
+
+    @property
+    def gas_constant(self) -> float:
+        """Specific gas constant R_u/M [J/(kg K)]."""
+        return R_UNIVERSAL / self.molar_mass
+
+    def gamma(self, T: float) -> float:
+        """Ratio of specific heats cp/cv at T [-]."""
+        cp = self.molar_cp(T)
+        return cp / (cp - R_UNIVERSAL)
+
+
+def _padded(name: str, coefficients) -> tuple[float, ...]:
+    coeffs = tuple(float(v) for v in coefficients)
+    if not 1 <= len(coeffs) <= N_COEFFICIENTS:
+        raise ValueError(f"species {name!r}: expected 1 to 6 cp coefficients (a, b, c, d, e, f), got {len(coeffs)}")
+    if not all(math.isfinite(v) for v in coeffs):
+        raise ValueError(f"species {name!r}: cp coefficients must be finite, got {coeffs}")
+    return coeffs + (0.0,) * (N_COEFFICIENTS - len(coeffs))
+
+
+#: Species names resolved through CoolProp when a scene names them without data.
+BUILTIN_COOLPROP_NAMES = {"N2": "Nitrogen", "O2": "Oxygen", "CO2": "CarbonDioxide", "He": "Helium", "Ar": "Argon",
+                          "H2O": "Water", "H2": "Hydrogen", "Air": "Air"}
+
+#: Abaqus verification-deck air (../shared/PHYSICS.md): M and cp polynomial.
+ABAQUS_AIR = Species("air", 0.0289, (28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0), source="Abaqus verification deck")
+
+
+def species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple[float, float] | None = None,
+                          width: float = 100.0) -> Species:
+    """A species whose cp is a piecewise cubic least-squares fit of CoolProp's ideal-gas cp0(T), made once at load.
+
+    The range ``t_range`` (default: the fluid's valid range clipped to [200 K, 2000 K]) is cut into pieces of
+    about ``width`` kelvin, each fitted by a cubic in T on 12 samples; beyond the range cp is held at its end
+    values. The maximum relative error of the fit (on points between the samples) is recorded in ``source``:
+    typically below 1e-6. CoolProp is never called while integrating.
+
+    Parameters
+    ----------
+    name : str
+        CoolProp fluid name (``"Nitrogen"``) or a short alias from :data:`BUILTIN_COOLPROP_NAMES` (``"N2"``).
+    """
+    import CoolProp.CoolProp as CP
+
+    fluid = BUILTIN_COOLPROP_NAMES.get(name, name)
+    try:
+        state = CP.AbstractState("HEOS", fluid)
+    except ValueError as exc:
+        raise ValueError(f"species {name!r}: CoolProp does not know the fluid {fluid!r} ({exc})") from None
+
+    def cp0(T):
+        state.update(CP.DmolarT_INPUTS, 1e-6, T)
+        return state.cp0molar()
+
+    lo, hi = t_range or (max(200.0, state.Tmin() * 1.05), min(2000.0, state.Tmax()))
+    edges = np.linspace(lo, hi, max(1, int(round((hi - lo) / width))) + 1)
+    pieces, err = [(cp0(lo),)], 0.0
+    for t0, t1 in zip(edges[:-1], edges[1:]):
+        T = np.linspace(t0, t1, 12)
+        coef = np.polynomial.polynomial.polyfit(T, [cp0(t) for t in T], 3)
+        pieces.append(tuple(coef))
+        mid = 0.5 * (T[:-1] + T[1:])
+        err = max(err, max(abs(np.polynomial.polynomial.polyval(t, coef) / cp0(t) - 1.0) for t in mid))
+    pieces.append((cp0(hi),))
+    source = f"CoolProp {fluid} cp0, cubic pieces on [{lo:.0f}, {hi:.0f}] K, max rel error {err:.1e}"
+    return Species(label or name, state.molar_mass(), pieces[0], source=source,
+                   breaks=tuple(float(e) for e in edges), pieces=tuple(pieces))
+
+
+def builtin_species(name: str) -> Species:
+    """A species known by name: ``"air"`` (Abaqus deck data) or a CoolProp fluid (fitted at load)."""
+    if name.lower() == "air" and name != "Air":
+        return ABAQUS_AIR
+    return species_from_coolprop(name, label=name)

@@ -1,0 +1,121 @@
+"""Piecewise-linear tables of one variable (inflator curves, volume histories, amplitudes).
+
+A table is validated once when it is built; evaluation is a scalar binary search, cheap enough for an ODE
+right-hand side. Breakpoints are exposed so the integrator can stop at each kink.
+"""
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Table", "TableError"]
+
+
+class TableError(ValueError):
+    """A table whose data cannot define a piecewise-linear function; the message says which row and why."""
+
+
+@dataclass(frozen=True)
+class Table:
+    """A piecewise-linear function y(x), held constant beyond its first and last rows.
+
+    Parameters
+    ----------
+    x : (n,) float
+        Abscissae, strictly increasing, finite (e.g. time [s] or pressure difference [Pa]).
+    y : (n,) float
+        Ordinates, finite.
+    name : str
+        What the table is (used in error messages), e.g. ``"mass flow [kg/s]"``.
+    extrapolation : str
+        ``"constant"`` (hold the end values) or ``"linear"`` (extend the end segments).
+
+    Examples
+    --------
+    >>> t = Table((0.0, 1.0, 3.0), (0.0, 2.0, 2.0))
+    >>> t(0.5), t(2.0), t(9.0), t.slope(0.5), t.slope(2.0)
+    (1.0, 2.0, 2.0, 2.0, 0.0)
+    """
+
+    x: tuple[float, ...]
+    y: tuple[float, ...]
+    name: str = "table"
+    extrapolation: str = "constant"
+    _xs: list = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        x = np.asarray(self.x, dtype=float).ravel()
+        y = np.asarray(self.y, dtype=float).ravel()
+        if x.size == 0:
+            raise TableError(f"{self.name}: the table is empty; expected at least one row")
+        if x.size != y.size:
+            raise TableError(f"{self.name}: {x.size} abscissae but {y.size} ordinates")
+        for label, arr in (("first", x), ("second", y)):
+            bad = np.flatnonzero(~np.isfinite(arr))
+            if bad.size:
+                raise TableError(f"{self.name}: row {bad[0] + 1} has a non-finite value in the {label} column; "
+                                 "expected finite numbers")
+        steps = np.flatnonzero(np.diff(x) <= 0.0)
+        if steps.size:
+            i = steps[0] + 1
+            raise TableError(f"{self.name}: rows {i} and {i + 1} are not in strictly increasing order "
+                             f"({x[i - 1]!r} then {x[i]!r})")
+        if self.extrapolation not in ("constant", "linear"):
+            raise TableError(f"{self.name}: extrapolation must be 'constant' or 'linear', got {self.extrapolation!r}")
+        object.__setattr__(self, "x", tuple(float(v) for v in x))
+        object.__setattr__(self, "y", tuple(float(v) for v in y))
+        object.__setattr__(self, "_xs", list(self.x))
+
+    def _segment(self, x: float) -> int:
+        """Index i of the segment [x_i, x_{i+1}) holding x, clipped to [0, n-2]."""
+        return min(max(bisect.bisect_right(self._xs, x) - 1, 0), len(self._xs) - 2)
+
+    def __call__(self, x: float) -> float:
+        xs, ys = self.x, self.y
+        if len(xs) == 1:
+            return ys[0]
+        if x <= xs[0] and self.extrapolation == "constant":
+            return ys[0]
+        if x >= xs[-1] and self.extrapolation == "constant":
+            return ys[-1]
+        i = self._segment(x)
+        w = (x - xs[i]) / (xs[i + 1] - xs[i])
+        return ys[i] + w * (ys[i + 1] - ys[i])
+
+    def slope(self, x: float) -> float:
+        """dy/dx at x, taken from the right at a breakpoint (0 beyond the ends when held constant)."""
+        xs, ys = self.x, self.y
+        if len(xs) == 1 or (self.extrapolation == "constant" and (x < xs[0] or x >= xs[-1])):
+            return 0.0
+        i = self._segment(x)
+        return (ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i])
+
+    def integral(self, a: float, b: float) -> float:
+        """Exact integral of the table from a to b (trapezoids on the pieces)."""
+        if b < a:
+            return -self.integral(b, a)
+        knots = [a] + [v for v in self.x if a < v < b] + [b]
+        return math.fsum(0.5 * (self(k0) + self(k1)) * (k1 - k0) for k0, k1 in zip(knots[:-1], knots[1:]))
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        """Abscissae where the slope may jump (all rows)."""
+        return self.x
+
+    def require(self, *, minimum: float | None = None, positive: bool = False) -> "Table":
+        """Check the ordinates' range; returns self so it chains.
+
+        >>> Table((0.0, 1.0), (1.0, -1.0), name="T [K]").require(positive=True)
+        Traceback (most recent call last):
+        ...
+        cavity.tables.TableError: T [K]: row 2 has value -1.0; expected > 0
+        """
+        for i, v in enumerate(self.y):
+            if positive and not v > 0.0:
+                raise TableError(f"{self.name}: row {i + 1} has value {v!r}; expected > 0")
+            if minimum is not None and v < minimum:
+                raise TableError(f"{self.name}: row {i + 1} has value {v!r}; expected >= {minimum}")
+        return self

@@ -1,0 +1,189 @@
+"""A network of cavities joined by exchanges: the ODE right-hand side of a whole scene's gas.
+
+Unknown vector layout::
+
+    [cavity 0 unknowns | cavity 1 unknowns | ... | ledger]
+
+where each cavity holds its species masses [kg] (and its internal energy U [J] unless isothermal), and the
+ledger holds running integrals that take no part in the dynamics but close the books exactly: per exchange the
+mass [kg] and energy [J] that crossed it (positive upstream → downstream), per cavity the inflator mass [kg],
+inflator enthalpy [J], boundary work ∫p dV [J] and heat lost [J]. Because every explicit or implicit Runge–Kutta
+step is linear in the rates, initial + inflow − outflow − final vanishes to round-off.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from cavity.cavity import CavityState
+from .vent import GasPoint
+
+__all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
+
+LEDGER_PER_EXCHANGE = 2  # mass, energy
+LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
+
+
+def _labelled(func, label):
+    func.label = label
+    return func
+
+
+def gas_point(state: CavityState) -> GasPoint:
+    """The flow-law view of a cavity state."""
+    mix, T = state.mixture, state.temperature
+    if mix.mass <= 0.0:
+        return GasPoint(state.pressure, T, 0.0, 1.0, 1.4, 0.0, state.masses)
+    return GasPoint(state.pressure, T, state.density, mix.gas_constant, mix.gamma(T), state.specific_enthalpy,
+                    state.masses / mix.mass)
+
+
+@dataclass
+class Network:
+    """Cavities, exchanges and the environment of one scene.
+
+    Attributes
+    ----------
+    gas : cavity.gas.GasModel
+    cavities : tuple of cavity.cavity.Cavity
+    exchanges : tuple of exchange.vent.Exchange
+    ambient : exchange.vent.Ambient
+    """
+
+    gas: object
+    cavities: tuple
+    exchanges: tuple
+    ambient: object
+    offsets: list = field(init=False)
+    ledger_offset: int = field(init=False)
+    _T_guess: list = field(init=False)
+    _ambient_point: GasPoint = field(init=False)
+
+    def __post_init__(self):
+        self.offsets, k = [], 0
+        for cav in self.cavities:
+            self.offsets.append(k)
+            k += cav.n_unknowns
+        self.ledger_offset = k
+        self._T_guess = [c.initial_temperature for c in self.cavities]
+        self._ambient_point = self.ambient.point()
+
+    @property
+    def size(self) -> int:
+        return self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges) + LEDGER_PER_CAVITY * len(self.cavities)
+
+    def initial_state(self) -> np.ndarray:
+        y = np.zeros(self.size)
+        for cav, k in zip(self.cavities, self.offsets):
+            y[k:k + cav.n_unknowns] = cav.initial_unknowns(self.gas)
+        return y
+
+    @property
+    def breakpoints(self) -> tuple:
+        return tuple(b for cav in self.cavities for b in cav.breakpoints)
+
+    def states(self, t: float, y) -> list:
+        """The gas state of every cavity at (t, y)."""
+        out = []
+        for i, (cav, k) in enumerate(zip(self.cavities, self.offsets)):
+            s = CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i])
+            self._T_guess[i] = s.temperature
+            out.append(s)
+        return out
+
+    def exchange_area(self, index: int, t: float) -> float:
+        """Flow area of exchange ``index`` at t [m^2]."""
+        return self.exchanges[index].area
+
+    def exchange_flows(self, t: float, states: list) -> list:
+        """Signed mass flow [kg/s] and the GasPoint it carries, per exchange."""
+        points = [gas_point(s) for s in states]
+        flows = []
+        for j, ex in enumerate(self.exchanges):
+            a = points[ex.upstream]
+            b = self._ambient_point if ex.downstream is None else points[ex.downstream]
+            mdot = ex.mass_flow(a, b, self.exchange_area(j, t), t)
+            flows.append((mdot, a if mdot >= 0.0 else b))
+        return flows
+
+    def rhs(self, t: float, y) -> np.ndarray:
+        """d(unknowns)/dt at (t, y)."""
+        states = self.states(t, y)
+        dy = np.zeros_like(y)
+        ns = len(self.gas.species)
+        for cav, k, s, c in zip(self.cavities, self.offsets, states, self._cavity_ledger()):
+            for inf in cav.inflators:
+                mdot = inf.mass_flow(t)
+                if mdot:
+                    hdot = mdot * inf.gas.enthalpy(inf.temperature(t)) / inf.gas.mass
+                    dy[k:k + ns] += mdot * np.asarray(inf.mass_fractions)
+                    dy[c] += mdot
+                    dy[c + 1] += hdot
+                    if not cav.isothermal:
+                        dy[k + ns] += hdot
+            if not cav.isothermal:
+                work, heat = s.pressure * s.volume_rate, cav.heat_loss(s.temperature)
+                dy[k + ns] -= work + heat
+                dy[c + 2] += work
+                dy[c + 3] += heat
+        for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, self.exchange_flows(t, states))):
+            if mdot == 0.0:
+                continue
+            edot = mdot * carrier.h
+            self._transfer(dy, ex.upstream, -mdot, -edot, carrier)
+            if ex.downstream is not None:
+                self._transfer(dy, ex.downstream, mdot, edot, carrier)
+            e = self.ledger_offset + LEDGER_PER_EXCHANGE * j
+            dy[e] += mdot
+            dy[e + 1] += edot
+        return dy
+
+    def _transfer(self, dy, i, mdot, edot, carrier):
+        k, cav, ns = self.offsets[i], self.cavities[i], len(self.gas.species)
+        dy[k:k + ns] += mdot * np.asarray(carrier.mass_fractions)
+        if not cav.isothermal:
+            dy[k + ns] += edot
+
+    def _cavity_ledger(self):
+        base = self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges)
+        return [base + LEDGER_PER_CAVITY * i for i in range(len(self.cavities))]
+
+    # hooks used by cavity.integration.integrate
+    def events(self) -> list:
+        """Switch functions: per exchange, choking (p_low − p_crit) and flow reversal (p_a − p_b).
+
+        The orifice law's second derivative jumps where flow chokes and its slope is infinite where Δp = 0;
+        stopping there keeps high-order steps from straddling either.
+        """
+        out = []
+        for j, ex in enumerate(self.exchanges):
+            out.append(_labelled(lambda t, y, j=j: self._exchange_switch(t, y, j, "choke"), f"{ex.name}:choke"))
+            out.append(_labelled(lambda t, y, j=j: self._exchange_switch(t, y, j, "dp"), f"{ex.name}:reversal"))
+        return out
+
+    def _exchange_switch(self, t, y, j, kind):
+        from .orifice import critical_pressure_ratio
+
+        ex = self.exchanges[j]
+        states = self.states(t, y)
+        pa = states[ex.upstream].pressure
+        pb = self.ambient.pressure if ex.downstream is None else states[ex.downstream].pressure
+        if kind == "dp":
+            return (pa - pb) / max(pa, pb)
+        hi, lo, side = (pa, pb, states[ex.upstream]) if pa >= pb else (pb, pa, None if ex.downstream is None
+                                                                         else states[ex.downstream])
+        gamma = self._ambient_point.gamma if side is None else side.mixture.gamma(side.temperature)
+        return (lo - critical_pressure_ratio(gamma) * hi) / hi
+
+    def on_event(self, t, y, label):
+        return y
+
+    def describe(self, t: float, y) -> str:
+        """A one-line account of the cavities' state, for error messages."""
+        parts = []
+        for cav, k in zip(self.cavities, self.offsets):
+            ns = len(self.gas.species)
+            m = y[k:k + ns]
+            parts.append(f"{cav.name}: mass {m.sum():.6g} kg" + ("" if cav.isothermal else f", U {y[k + ns]:.6g} J"))
+        return "; ".join(parts)
