@@ -17,6 +17,9 @@ from scipy.integrate import solve_ivp
 
 __all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS"]
 
+#: Events allowed at one instant before the run is declared stuck (chattering switches).
+MAX_EVENTS_AT_ONE_TIME = 20
+
 METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
 
@@ -65,6 +68,7 @@ class Trajectory:
     stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
                                                  "restarts": 0, "events": 0})
     last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
+    stalls: int = 0  # events in a row at the same time
 
     def __call__(self, t: float) -> np.ndarray:
         """State at time t (right limit at a breakpoint)."""
@@ -147,7 +151,8 @@ def _directions(events, t, y, last) -> list:
     """Crossing direction each switch function is watched for, away from its current sign.
 
     The function that has just fired is watched for the opposite crossing, so a root located a rounding error
-    before the true crossing cannot fire again at the restart point.
+    before the true crossing cannot fire again at the restart point. A function that is exactly zero at the
+    start (a tank at ambient pressure) is not watched in this segment: its kink is the segment's start.
     """
     dirs = []
     for g in events:
@@ -156,7 +161,7 @@ def _directions(events, t, y, last) -> list:
             dirs.append(-last[2])
             continue
         v = g(t, y)
-        dirs.append(1.0 if v < 0 else -1.0 if v > 0 else 0.0)
+        dirs.append(1.0 if v < 0 else -1.0 if v > 0 else None)  # None: exactly on the switch, not watched
     return dirs
 
 
@@ -191,10 +196,14 @@ def _advance(system, t, y, stop, options, traj):
     """One solve_ivp call from t towards stop; returns where it ended (stop, or an event)."""
     switches = system.events()
     dirs = _directions(switches, t, y, traj.last_event)
+    switches = [g for g, d in zip(switches, dirs) if d is not None]
+    dirs = [d for d in dirs if d is not None]
     events = [_watched(g, d) for g, d in zip(switches, dirs)]
     remaining = options.max_steps - traj.stats["steps"]
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
+    if hasattr(system, "begin_segment"):
+        system.begin_segment(t, stop)
     try:
         sol = solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
                         max_step=options.max_step, dense_output=True, events=events or None)
@@ -223,8 +232,12 @@ def _advance(system, t, y, stop, options, traj):
         traj.events.append((t_end, label))
         st["events"] += 1
         y_end = np.asarray(system.on_event(t_end, y_end, label), dtype=float)
-        direction = dirs[index]
-        if direction == 0.0:  # watched both ways: the crossing leaves the sign g had before it
-            direction = -1.0 if switches[index](sol.t[-2], sol.y[:, -2]) > 0 else 1.0
-        traj.last_event = (label, t_end, direction)
+        if traj.last_event is not None and traj.last_event[1] == t_end:
+            traj.stalls += 1
+            if traj.stalls > MAX_EVENTS_AT_ONE_TIME:
+                raise SolverError(f"switches keep firing at t = {t_end:.9g} s without progress ({label}); "
+                                  f"{system.describe(t_end, y_end)}")
+        else:
+            traj.stalls = 0
+        traj.last_event = (label, t_end, dirs[index])
     return t_end, y_end

@@ -12,6 +12,7 @@ step is linear in the rates, initial + inflow − outflow − final vanishes to 
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -59,6 +60,7 @@ class Network:
     ledger_offset: int = field(init=False)
     _T_guess: list = field(init=False)
     _ambient_point: GasPoint = field(init=False)
+    _segment_end: float = field(init=False, default=math.inf)
 
     def __post_init__(self):
         self.offsets, k = [], 0
@@ -107,8 +109,22 @@ class Network:
             flows.append((mdot, a if mdot >= 0.0 else b))
         return flows
 
+    def begin_segment(self, t0: float, t1: float) -> None:
+        """The integrator is about to integrate over [t0, t1], which holds no breakpoint inside."""
+        self._segment_end = t1
+
+    def input_time(self, t: float) -> float:
+        """The time at which to read tabulated inputs: at the end of a segment, its left limit.
+
+        Tables are right-continuous at their breakpoints; a step ending on a breakpoint must see the slope of the
+        piece it integrated over, not the next one.
+        """
+        end = self._segment_end
+        return math.nextafter(end, -math.inf) if t >= end else t
+
     def rhs(self, t: float, y) -> np.ndarray:
         """d(unknowns)/dt at (t, y)."""
+        t = self.input_time(t)
         states = self.states(t, y)
         dy = np.zeros_like(y)
         ns = len(self.gas.species)

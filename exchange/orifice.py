@@ -115,7 +115,7 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
 
     References
     ----------
-    Abaqus Analysis User's Guide 11.5.? "Fluid exchange definition" (ORIFICE); ../shared/PHYSICS.md.
+    Abaqus Analysis User's Guide 11.5.3 "Fluid exchange definition" (ORIFICE); ../shared/PHYSICS.md.
 
     Examples
     --------

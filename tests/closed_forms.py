@@ -45,7 +45,7 @@ def adiabatic_blowdown_pressure(t, p0, T0, V, Cd, A, gamma, R, p_amb):
     def elapsed(p):
         pc = p_amb / ((2.0 / (gamma + 1.0)) ** (gamma / (gamma - 1.0)))  # upstream pressure at the choke limit
         pts = [x for x in (pc,) if p < x < p0]
-        return quad(dt_dp, p, p0, points=pts or None, epsabs=0.0, epsrel=2e-14, limit=200)[0]
+        return quad(dt_dp, p, p0, points=pts or None, epsabs=0.0, epsrel=1e-13, limit=200)[0]
 
     if t == 0.0:
         return p0

@@ -1,0 +1,53 @@
+"""The ``ventsim`` command: run a scene, check the case library, render pictures."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from .errors import SceneError
+
+__all__ = ["main"]
+
+
+def _run(args) -> int:
+    from .output import write_results
+    from .runner import run_scene
+
+    results = run_scene(args.scene, progress=not args.quiet)
+    paths = write_results(results, args.out)
+    if not args.quiet:
+        for name, cav in results.summary["cavities"].items():
+            print(f"{name}: peak pressure {cav['peak pressure [Pa]']:.6g} Pa at {cav['peak pressure time [s]']:.6g} s")
+        st = results.summary["solver"]
+        print(f"solver {st['method']}: {st['steps']} steps, {st['rhs_calls']} RHS calls, {st['events']} events, "
+              f"{st['wall time [s]']:.3f} s")
+        print("wrote " + ", ".join(str(p) for p in paths.values()))
+    return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="ventsim", description="Gas cavities venting through blockable leakage surfaces.")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="run a scene file and write history.csv, summary.json, history.png")
+    r.add_argument("scene", type=Path, help="scene TOML file")
+    r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
+    r.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    r.set_defaults(func=_run)
+    return p
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except SceneError as exc:
+        print(f"ventsim: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("ventsim: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,92 @@
+"""Write a run's results atomically: history.csv, summary.json, history.png (temp file, then rename)."""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["atomic_path", "write_history", "write_summary", "plot_history", "write_results"]
+
+
+@contextmanager
+def atomic_path(target: Path):
+    """Yield a temporary path next to ``target``; on success it replaces ``target`` in one rename.
+
+    A failure while writing leaves any previous ``target`` untouched and removes the temporary file.
+    """
+    target = Path(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=target.parent)
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, target)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def write_history(path: Path, columns: list, history: np.ndarray) -> None:
+    """CSV with a header of names and units, full double precision."""
+    with atomic_path(path) as tmp:
+        np.savetxt(tmp, history, delimiter=",", header=",".join(columns), comments="", fmt="%.17g")
+
+
+def _plain(obj):
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, np.generic):
+        return obj.item()
+    return obj
+
+
+def write_summary(path: Path, summary: dict) -> None:
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(_plain(summary), indent=2) + "\n")
+
+
+def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "") -> None:
+    """Pressure, temperature and exchange mass flows against time, one panel each (matplotlib, Agg)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t = history[:, 0]
+    panels = [("pressure [Pa]", "pressure [kPa]", 1e-3), ("temperature [K]", "temperature [K]", 1.0),
+              ("mass_flow [kg/s]", "mass flow [kg/s]", 1.0)]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(8, 8), sharex=True)
+    for ax, (suffix, label, factor) in zip(axes, panels):
+        for i, c in enumerate(columns):
+            if c.endswith(suffix):
+                ax.plot(t * 1e3, history[:, i] * factor, label=c.split(" [")[0])
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8, loc="best")
+    axes[-1].set_xlabel("time [ms]")
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+
+
+def write_results(results, out: Path) -> dict:
+    """All outputs of a run into folder ``out``; returns {kind: path}."""
+    out = Path(out)
+    paths = {"history": out / "history.csv", "summary": out / "summary.json", "plot": out / "history.png"}
+    write_history(paths["history"], results.columns, results.history)
+    write_summary(paths["summary"], results.summary)
+    plot_history(paths["plot"], results.columns, results.history, results.model.scene.title)
+    return paths
