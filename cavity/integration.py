@@ -19,6 +19,8 @@ __all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS"]
 
 #: Events allowed at one instant before the run is declared stuck (chattering switches).
 MAX_EVENTS_AT_ONE_TIME = 20
+#: A switch function closer to zero than this times rtol at a restart is judged by its trend, not its sign.
+SWITCH_NEAR_ZERO_PER_RTOL = 100.0
 
 METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
@@ -99,13 +101,15 @@ class _Progress:
         self.t0, self.t1, self.enabled, self.delay = t0, t1, enabled, delay
         self.start = _time.perf_counter()
         self.shown = False
+        self.last = 0.0
 
     def update(self, t):
         if not self.enabled:
             return
         elapsed = _time.perf_counter() - self.start
-        if elapsed < self.delay:
+        if elapsed < self.delay or elapsed - self.last < 0.2:
             return
+        self.last = elapsed
         frac = (t - self.t0) / (self.t1 - self.t0) if self.t1 > self.t0 else 1.0
         bar = "#" * int(30 * frac)
         sys.stderr.write(f"\r[{bar:<30}] {100 * frac:5.1f}%  t = {t:.6g} s  ({elapsed:.1f} s)")
@@ -147,21 +151,30 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
     return traj
 
 
-def _directions(events, t, y, last) -> list:
+def _directions(system, events, t, y, last, near) -> list:
     """Crossing direction each switch function is watched for, away from its current sign.
 
-    The function that has just fired is watched for the opposite crossing, so a root located a rounding error
-    before the true crossing cannot fire again at the restart point. A function that is exactly zero at the
-    start (a tank at ambient pressure) is not watched in this segment: its kink is the segment's start.
+    Switch functions are dimensionless and of order one. The function that has just fired is watched for the
+    opposite crossing, so a root located a rounding error before the true crossing cannot fire again at the
+    restart. A function within ``near`` of zero (a twin of the one that fired, a tank exactly at ambient) is
+    watched against its trend along the flow: if it is moving up it can only fire coming back down; if it does
+    not move it is not watched in this segment (its kink is the segment's start).
     """
-    dirs = []
+    dirs, slope_probe = [], None
     for g in events:
         label = getattr(g, "label", None)
         if last is not None and label is not None and label == last[0] and t == last[1]:
             dirs.append(-last[2])
             continue
         v = g(t, y)
-        dirs.append(1.0 if v < 0 else -1.0 if v > 0 else None)  # None: exactly on the switch, not watched
+        if abs(v) > near:
+            dirs.append(1.0 if v < 0 else -1.0)
+            continue
+        if slope_probe is None:
+            dt = 1e-9 * max(abs(t), 1e-6)
+            slope_probe = (t + dt, y + dt * np.asarray(system.rhs(t, y)))
+        trend = g(*slope_probe) - v
+        dirs.append(-1.0 if trend > 0 else 1.0 if trend < 0 else None)  # None: not watched
     return dirs
 
 
@@ -195,7 +208,7 @@ def _state_at_event(system, sol, t_event, options, traj):
 def _advance(system, t, y, stop, options, traj):
     """One solve_ivp call from t towards stop; returns where it ended (stop, or an event)."""
     switches = system.events()
-    dirs = _directions(switches, t, y, traj.last_event)
+    dirs = _directions(system, switches, t, y, traj.last_event, SWITCH_NEAR_ZERO_PER_RTOL * options.rtol)
     switches = [g for g, d in zip(switches, dirs) if d is not None]
     dirs = [d for d in dirs if d is not None]
     events = [_watched(g, d) for g, d in zip(switches, dirs)]
@@ -223,8 +236,9 @@ def _advance(system, t, y, stop, options, traj):
     traj.segments.append(sol.sol)
     traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
     t_end, y_end = float(sol.t[-1]), sol.y[:, -1]
-    traj.last_event = None
-    if sol.status == 1:
+    if sol.status != 1:
+        traj.last_event = None
+    else:
         index = next(i for i, te in enumerate(sol.t_events) if len(te))
         t_end = float(sol.t_events[index][0])
         y_end = _state_at_event(system, sol, t_end, options, traj)
