@@ -1,0 +1,9 @@
+"""Fixtures of the blockage tests (helpers live in ``blockage_scenes.py``)."""
+
+import numpy as np
+import pytest
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(20261122)
