@@ -13,7 +13,12 @@ from cavity.integration import SolverOptions
 from cavity.species import Species, builtin_species, species_from_coolprop
 from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, TableVolume, closed_mesh_volume
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
-from exchange.vent import Ambient, Exchange, OrificeLaw
+from exchange.activation import Activation
+from exchange.discharge import DischargeTable
+from exchange.laws import (BulkViscosityLaw, FabricLeakageLaw, FluxLaw, GraefeLaw, LeakageTableLaw,
+                           LinearResistanceLaw, OrificeLaw)
+from exchange.leakage_table import LeakageTable
+from exchange.vent import Ambient, Exchange
 
 from .errors import SceneError
 from .scene import Scene
@@ -40,8 +45,7 @@ def build_model(scene: Scene) -> Model:
     ambient = Ambient(amb.pressure, amb.temperature, tuple(y_amb), gas.mixture(y_amb))
     cavities = tuple(_cavity(scene, gas, i) for i in range(len(scene.cavity)))
     names = [c.name for c in cavities]
-    exchanges = tuple(Exchange(e.name, names.index(e.from_), None if e.to == "ambient" else names.index(e.to),
-                               OrificeLaw(e.discharge_coefficient), e.area, e.two_way) for e in scene.exchange)
+    exchanges = tuple(_exchange(scene, i, names) for i in range(len(scene.exchange)))
     network = Network(gas, cavities, exchanges, ambient)
     t_end = scene.time.end
     dt = scene.time.output_interval or t_end / 500.0
@@ -137,6 +141,48 @@ def _inflator(gas: GasModel, inf):
                             inf.start, inf.scale)
 
 
+def _exchange(scene: Scene, i: int, names: list) -> Exchange:
+    e, where = scene.exchange[i], f"exchange[{i}]"
+    try:
+        law = _law(scene, e, where)
+    except ValueError as exc:
+        raise SceneError(scene.path, f"{where}.{_law_key(e.law)}", str(exc)) from None
+    pop = e.pop_pressure or None
+    activation = None
+    if e.open_time or e.close_time or pop or e.amplitude is not None or e.delta_area:
+        activation = Activation(e.open_time, e.close_time or math.inf, pop, e.pop_hold_time, e.amplitude,
+                                e.delta_area)
+    return Exchange(e.name, names.index(e.from_), None if e.to == "ambient" else names.index(e.to), law, e.area,
+                    e.two_way, activation)
+
+
+def _law_key(law: str) -> str:
+    return {"mass_rate_leakage": "leakage_table", "volume_rate_leakage": "leakage_table",
+            "orifice": "discharge_coefficient", "fabric_leakage": "discharge_coefficient"}.get(law, "law")
+
+
+def _law(scene: Scene, e, where: str):
+    """The flow-law object of an exchange spec."""
+    cd = e.discharge_coefficient
+    if not isinstance(cd, float):  # a Table read from CSV
+        cd = DischargeTable(cd.x, cd.y, e.discharge_coefficient_of)
+    if e.law == "orifice":
+        return OrificeLaw(cd)
+    if e.law == "fabric_leakage":
+        return FabricLeakageLaw(cd, e.open_fraction)
+    if e.law == "graefe":
+        return GraefeLaw(e.flc, e.fac)
+    if e.law in ("mass_rate_leakage", "volume_rate_leakage"):
+        t = read_table(scene.base / e.leakage_table, scene.path, f"{where}.leakage_table", "leakage")
+        kind = "mass" if e.law == "mass_rate_leakage" else "volume"
+        return LeakageTableLaw(LeakageTable(t.x, t.y, kind, e.leakage_table_extrapolation))
+    if e.law in ("mass_flux", "volume_flux"):
+        return FluxLaw(e.law.split("_")[0], e.flux, e.flux_amplitude)
+    if e.law == "bulk_viscosity":
+        return BulkViscosityLaw(e.viscous_resistance, e.hydrodynamic_resistance)
+    return LinearResistanceLaw(e.conductance)
+
+
 def _scales(network: Network, t_end: float) -> np.ndarray:
     """A magnitude for every unknown (kg for masses, J for energies), for absolute tolerances."""
     y0 = network.initial_state()
@@ -165,13 +211,26 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
     return scale
 
 
+def _activation_text(e) -> str:
+    parts = []
+    if e.open_time or e.close_time:
+        parts.append(f"open from {e.open_time} s" + (f" to {e.close_time} s" if e.close_time else ""))
+    if e.pop_pressure:
+        parts.append(f"pops at {e.pop_pressure} Pa" + (f" held {e.pop_hold_time} s" if e.pop_hold_time else ""))
+    if e.amplitude is not None:
+        parts.append("area amplitude table")
+    if e.delta_area:
+        parts.append("delta leakage area")
+    return ", ".join(parts) or "always open"
+
+
 def _modelled(scene: Scene, cavities) -> dict:
     """What this scene modelled (and therefore what it did not), for summary.json."""
     return {
         "cavities": {c.name: {"energy": c.energy, "volume": type(c.volume).__name__,
                               "inflators": [type(i).__name__ for i in c.inflators]} for c in cavities},
-        "exchanges": {e.name: {"law": e.law, "to": e.to, "two_way": e.two_way, "area": "fixed"}
-                      for e in scene.exchange},
+        "exchanges": {e.name: {"law": e.law, "from": e.from_, "to": e.to, "two_way": e.two_way, "area": "fixed",
+                               "activation": _activation_text(e)} for e in scene.exchange},
         "gas": "ideal-gas mixture, species masses tracked",
         "geometry": "none" if all(not c.mesh for c in scene.cavity) else "closed mesh volume",
         "blockage": "not modelled", "bodies": "none", "contact": "not modelled",

@@ -34,6 +34,8 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     r.add_argument("--quiet", action="store_true", help="print nothing but errors")
     r.set_defaults(func=_run)
+    from .sweep import add_sweep_parser
+    add_sweep_parser(sub)
     return p
 
 

@@ -44,9 +44,10 @@ def history_columns(model: Model) -> list:
     return cols
 
 
-def quantities(model: Model, t: float, y) -> list:
-    """One history row at (t, y)."""
+def quantities(model: Model, t: float, y, mode=None) -> list:
+    """One history row at (t, y), in the discrete state ``mode`` (vents popped or not) in force then."""
     net = model.network
+    net.restore(mode)
     states = net.states(t, y)
     row = [t]
     for s in states:
@@ -103,7 +104,8 @@ def run(model: Model, *, progress: bool = False) -> Results:
     traj = integrate(net, y0, 0.0, t_end, model.options, progress=progress)
     wall = time.perf_counter() - start
     ys = traj.sample(model.output_times)
-    history = np.array([quantities(model, t, y) for t, y in zip(model.output_times, ys)])
+    history = np.array([quantities(model, t, y, traj.mode_at(t)) for t, y in zip(model.output_times, ys)])
+    net.restore(traj.modes[-1])
     y1 = traj(t_end)
     summary = {"title": model.scene.title, "scene": str(model.scene.path), "end time [s]": t_end,
                "cavities": {}, "mass balance": mass_balance(model, y0, y1),

@@ -21,7 +21,8 @@ __all__ = ["Scene", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "Cav
            "ExchangeSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
-LAWS = ("orifice",)
+LAWS = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",
+        "volume_flux", "bulk_viscosity", "linear_resistance")
 INFLATOR_TYPES = ("mass_temperature", "tank_test")
 
 
@@ -98,13 +99,40 @@ class CavitySpec:
 @dataclass(frozen=True, kw_only=True)
 class ExchangeSpec:
     name: str = key("exchange name (column prefix in history.csv)")
-    from_: str = key("upstream cavity", toml="from")
-    to: str = key("downstream cavity, or 'ambient'", default="ambient")
+    from_: str = key("first (upstream) cavity", toml="from")
+    to: str = key("second cavity, or 'ambient'", default="ambient")
     law: str = key("flow law", default="orifice", choices=LAWS)
-    area: float = key("flow area", "m^2", check="nonnegative")
-    discharge_coefficient: float = key("discharge coefficient Cd", default=1.0, check="positive")
+    area: float = key("flow area", "m^2", check="nonnegative", default=0.0)
+    discharge_coefficient: object = key("orifice, fabric_leakage: Cd, a number or a CSV table of "
+                                        "`discharge_coefficient_of`", default=1.0)
+    discharge_coefficient_of: str = key("abscissa of a Cd table: upstream pressure [Pa] or time [s]",
+                                        default="pressure", choices=("pressure", "time"))
+    open_fraction: float = key("fabric_leakage: open (porous) fraction of the area", default=1.0, check="fraction")
+    flc: float = key("graefe: leakage coefficient FLC", default=1.0, check="nonnegative")
+    fac: float = key("graefe: area coefficient FAC", default=1.0, check="nonnegative")
+    leakage_table: str = key("mass_rate_leakage / volume_rate_leakage: CSV (|Δp| [Pa], flow per area "
+                             "[kg/(s m^2)] or [m^3/(s m^2)]); first row 0, 0", default="")
+    leakage_table_extrapolation: str = key("beyond the last row", default="linear", choices=("linear", "constant"))
+    flux: float = key("mass_flux [kg/(s m^2)] / volume_flux [m^3/(s m^2)]: prescribed flow per area, signed, "
+                      "positive from `from` to `to`", default=0.0, check="finite")
+    flux_amplitude: object = key("mass_flux / volume_flux: multiplier, a number or CSV (time [s], [-])",
+                                 default=None)
+    viscous_resistance: float = key("bulk_viscosity: c_v in Δp = c_v·v + c_h·ρ·v|v|", "Pa s/m", default=0.0,
+                                    check="nonnegative")
+    hydrodynamic_resistance: float = key("bulk_viscosity: c_h", default=0.0, check="nonnegative")
+    conductance: float = key("linear_resistance: ṁ = G·A·Δp", "kg/(s Pa m^2)", default=0.0, check="nonnegative")
     two_way: bool = key("to ambient: let ambient gas flow back in when the cavity is below ambient",
                         default=False)
+    open_time: float = key("activation: closed before this time", "s", default=0.0, check="nonnegative")
+    close_time: float = key("activation: closed from this time (0: never)", "s", default=0.0,
+                            check="nonnegative")
+    pop_pressure: float = key("activation: opens once p_from − p_to exceeds this (and stays open); "
+                              "0: no pop condition", "Pa", default=0.0, check="nonnegative")
+    pop_hold_time: float = key("activation: how long p_from − p_to must stay above pop_pressure", "s",
+                               default=0.0, check="nonnegative")
+    amplitude: object = key("activation: area multiplier, a number or CSV (time [s], [-])", default=None)
+    delta_area: bool = key("activation: current leakage area minus the area at activation (Abaqus DELTA "
+                           "LEAKAGE AREA)", default=False)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -171,6 +199,15 @@ def scene_from_dict(data: dict, path) -> Scene:
     def table(name):
         return lambda v, where: None if v is None else table_or_constant(v, base, path, where, name)
 
+    def number_or_table(name):
+        def convert(v, where):
+            if isinstance(v, (int, float)) and not isinstance(v, bool):
+                if not (math.isfinite(v) and v > 0):
+                    raise SceneError(path, where, f"expected a number > 0, got {v!r}")
+                return float(v)
+            return table_or_constant(v, base, path, where, name)
+        return convert
+
     inflator_nested = {"gas": composition, "temperature": table("temperature [K]"),
                        "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]")}
     cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested)}
@@ -180,7 +217,9 @@ def scene_from_dict(data: dict, path) -> Scene:
         "ambient": lambda v, w: parse(AmbientSpec, v, path, w, nested={"gas": composition}),
         "species": many(SpeciesSpec, {"cp": lambda v, w: tuple(v)}),
         "cavity": many(CavitySpec, cavity_nested),
-        "exchange": many(ExchangeSpec),
+        "exchange": many(ExchangeSpec, {"discharge_coefficient": number_or_table("discharge coefficient [-]"),
+                                        "flux_amplitude": table("flux amplitude [-]"),
+                                        "amplitude": table("area amplitude [-]")}),
     })
     scene = replace(scene, _path=str(path))
     _check_cross_references(scene, path)
@@ -217,6 +256,27 @@ def _check_cross_references(scene: Scene, path) -> None:
                                                                 f"{suggest(value, names + ['ambient'])}")
         if e.from_ == e.to:
             raise SceneError(path, f"exchange[{i}].to", "an exchange joins two different sides")
+        _check_exchange(scene, e, path, f"exchange[{i}]")
+
+
+LAW_KEYS = {"mass_rate_leakage": ("leakage_table",), "volume_rate_leakage": ("leakage_table",),
+            "bulk_viscosity": ("viscous_resistance",), "linear_resistance": ("conductance",)}
+
+
+def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
+    for k in LAW_KEYS.get(e.law, ()):
+        if not getattr(e, k):
+            raise SceneError(path, f"{where}.{k}", f"required for law {e.law!r}")
+    if e.leakage_table and not (scene.base / e.leakage_table).is_file():
+        raise SceneError(path, f"{where}.leakage_table", f"file {e.leakage_table!r} does not exist")
+    if e.law in ("mass_flux", "volume_flux") and e.flux == 0.0:
+        raise SceneError(path, f"{where}.flux", f"required (non-zero) for law {e.law!r}")
+    if not e.area > 0:
+        raise SceneError(path, f"{where}.area", "expected a flow area > 0 [m^2]")
+    if e.close_time and e.close_time <= e.open_time:
+        raise SceneError(path, f"{where}.close_time", f"must be later than open_time ({e.open_time} s)")
+    if e.pop_hold_time and not e.pop_pressure:
+        raise SceneError(path, f"{where}.pop_hold_time", "needs pop_pressure")
 
 
 def _check_inflator(inf: InflatorSpec, path, where: str) -> None:

@@ -18,7 +18,7 @@ __all__ = ["key", "parse", "describe_spec", "suggest"]
 def key(doc: str, unit: str = "-", *, default=MISSING, check: str | None = None, choices=None, toml: str = ""):
     """A scene key: its documentation, unit (``"Pa"``, ``"m^3"``, ``"-"``), default, and check.
 
-    ``check`` is one of ``"positive"``, ``"nonnegative"``, ``"fraction"``; ``choices`` a tuple of allowed strings;
+    ``check`` is one of ``"finite"``, ``"positive"``, ``"nonnegative"``, ``"fraction"``; ``choices`` a tuple of allowed strings;
     ``toml`` the key's name in the file when it differs from the field name (``from`` is a Python keyword).
     """
     meta = {"doc": doc, "unit": unit, "check": check, "choices": choices, "toml": toml}
@@ -82,6 +82,8 @@ def _checked(value, f, file, where):
     value = float(value)
     if not math.isfinite(value):
         raise SceneError(file, where, f"expected a finite number [{unit}], got {value!r}")
+    if check == "finite":
+        return value
     if check == "positive" and not value > 0:
         raise SceneError(file, where, f"expected a number > 0 [{unit}], got {value!r}")
     if check == "nonnegative" and not value >= 0:

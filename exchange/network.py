@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cavity.cavity import CavityState
+from .activation import activated_area
+from .orifice import critical_pressure_ratio
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
@@ -61,6 +63,9 @@ class Network:
     _T_guess: list = field(init=False)
     _ambient_point: GasPoint = field(init=False)
     _segment_end: float = field(init=False, default=math.inf)
+    popped: list = field(init=False)  # per exchange: the pop condition has been met (it stays open)
+    holding_since: list = field(init=False)  # per exchange: when Δp last rose above the pop pressure, or None
+    area_at_activation: list = field(init=False)
 
     def __post_init__(self):
         self.offsets, k = [], 0
@@ -68,14 +73,32 @@ class Network:
             self.offsets.append(k)
             k += cav.n_unknowns
         self.ledger_offset = k
-        self._T_guess = [c.initial_temperature for c in self.cavities]
         self._ambient_point = self.ambient.point()
+        self.reset()
+
+    def reset(self) -> None:
+        """Back to the discrete state of t = 0 (vents armed, nothing popped)."""
+        self._T_guess = [c.initial_temperature for c in self.cavities]
+        self._segment_end = math.inf
+        self.popped = [False] * len(self.exchanges)
+        self.holding_since = [None] * len(self.exchanges)
+        self.area_at_activation = [0.0] * len(self.exchanges)
+
+    def snapshot(self) -> tuple:
+        """The discrete state (for reading results back on a segment)."""
+        return tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation)
+
+    def restore(self, mode) -> None:
+        if mode is not None:
+            self.popped, self.holding_since, self.area_at_activation = (list(m) for m in mode)
 
     @property
     def size(self) -> int:
         return self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges) + LEDGER_PER_CAVITY * len(self.cavities)
 
     def initial_state(self) -> np.ndarray:
+        """Unknowns at t = 0; also resets the discrete state."""
+        self.reset()
         y = np.zeros(self.size)
         for cav, k in zip(self.cavities, self.offsets):
             y[k:k + cav.n_unknowns] = cav.initial_unknowns(self.gas)
@@ -83,7 +106,9 @@ class Network:
 
     @property
     def breakpoints(self) -> tuple:
-        return tuple(b for cav in self.cavities for b in cav.breakpoints)
+        pts = [b for cav in self.cavities for b in cav.breakpoints]
+        pts += [b for ex in self.exchanges if ex.activation is not None for b in ex.activation.breakpoints]
+        return tuple(pts)
 
     def states(self, t: float, y) -> list:
         """The gas state of every cavity at (t, y)."""
@@ -94,9 +119,15 @@ class Network:
             out.append(s)
         return out
 
-    def exchange_area(self, index: int, t: float) -> float:
-        """Flow area of exchange ``index`` at t [m^2]."""
+    def base_area(self, index: int, t: float) -> float:
+        """Leakage area of exchange ``index`` before activation rules [m^2]."""
         return self.exchanges[index].area
+
+    def exchange_area(self, index: int, t: float) -> float:
+        """Flow area of exchange ``index`` at t [m^2]: the leakage area after activation (window, pop, amplitude)."""
+        ex = self.exchanges[index]
+        return activated_area(self.base_area(index, t), t, ex.activation, self.popped[index],
+                              self.area_at_activation[index])
 
     def exchange_flows(self, t: float, states: list) -> list:
         """Signed mass flow [kg/s] and the GasPoint it carries, per exchange."""
@@ -167,32 +198,70 @@ class Network:
 
     # hooks used by cavity.integration.integrate
     def events(self) -> list:
-        """Switch functions: per exchange, choking (p_low − p_crit) and flow reversal (p_a − p_b).
+        """Switch functions valid in the current discrete state.
 
-        The orifice law's second derivative jumps where flow chokes and its slope is infinite where Δp = 0;
-        stopping there keeps high-order steps from straddling either.
+        Per exchange: choking (p_low − p_crit, pneumatic laws) and flow reversal (p_a − p_b), because the orifice
+        law's second derivative jumps where flow chokes and its slope is infinite where Δp = 0; and, for a vent
+        with a pop pressure not yet open, the pop crossing, or while holding, the drop below it and the end of
+        the hold time.
         """
         out = []
         for j, ex in enumerate(self.exchanges):
-            out.append(_labelled(lambda t, y, j=j: self._exchange_switch(t, y, j, "choke"), f"{ex.name}:choke"))
-            out.append(_labelled(lambda t, y, j=j: self._exchange_switch(t, y, j, "dp"), f"{ex.name}:reversal"))
+            if not ex.law.prescribed:
+                if ex.law.pneumatic:
+                    out.append(_labelled(lambda t, y, j=j: self._choke_switch(t, y, j), f"{ex.name}:choke"))
+                out.append(_labelled(lambda t, y, j=j: self._dp_switch(t, y, j), f"{ex.name}:reversal"))
+            act = ex.activation
+            if act is None or act.pop_pressure is None or self.popped[j]:
+                continue
+            if self.holding_since[j] is None:
+                out.append(_labelled(lambda t, y, j=j: self._pop_switch(t, y, j), f"{ex.name}:pop"))
+            else:
+                out.append(_labelled(lambda t, y, j=j: self._pop_switch(t, y, j), f"{ex.name}:pop-drop"))
+                due = self.holding_since[j] + act.hold_time
+                out.append(_labelled(lambda t, y, due=due, h=act.hold_time: (t - due) / h, f"{ex.name}:pop-hold"))
         return out
 
-    def _exchange_switch(self, t, y, j, kind):
-        from .orifice import critical_pressure_ratio
-
+    def _pressures(self, t, y, j):
         ex = self.exchanges[j]
-        states = self.states(t, y)
+        states = self.states(self.input_time(t), y)
         pa = states[ex.upstream].pressure
         pb = self.ambient.pressure if ex.downstream is None else states[ex.downstream].pressure
-        if kind == "dp":
-            return (pa - pb) / max(pa, pb)
-        hi, lo, side = (pa, pb, states[ex.upstream]) if pa >= pb else (pb, pa, None if ex.downstream is None
-                                                                         else states[ex.downstream])
-        gamma = self._ambient_point.gamma if side is None else side.mixture.gamma(side.temperature)
-        return (lo - critical_pressure_ratio(gamma) * hi) / hi
+        return states, pa, pb
+
+    def _dp_switch(self, t, y, j):
+        _, pa, pb = self._pressures(t, y, j)
+        return (pa - pb) / max(pa, pb)
+
+    def _choke_switch(self, t, y, j):
+        ex = self.exchanges[j]
+        states, pa, pb = self._pressures(t, y, j)
+        if pa >= pb:
+            hi, lo, point = pa, pb, gas_point(states[ex.upstream])
+        else:
+            hi, lo = pb, pa
+            point = self._ambient_point if ex.downstream is None else gas_point(states[ex.downstream])
+        return (lo - critical_pressure_ratio(point.gamma) * hi) / hi
+
+    def _pop_switch(self, t, y, j):
+        _, pa, pb = self._pressures(t, y, j)
+        pop = self.exchanges[j].activation.pop_pressure
+        return (pa - pb - pop) / max(pop, pb)
 
     def on_event(self, t, y, label):
+        """Apply a switch: a pop crossing starts the hold (or opens at once), a drop re-arms, a hold end opens."""
+        name, _, kind = label.rpartition(":")
+        j = next((k for k, ex in enumerate(self.exchanges) if ex.name == name), None)
+        if j is None or not kind.startswith("pop"):
+            return y
+        act = self.exchanges[j].activation
+        if kind == "pop" and act.hold_time > 0.0:
+            self.holding_since[j] = t
+        elif kind == "pop-drop":
+            self.holding_since[j] = None
+        else:
+            self.popped[j] = True
+            self.area_at_activation[j] = self.base_area(j, t)
         return y
 
     def describe(self, t: float, y) -> str:

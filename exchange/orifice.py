@@ -7,7 +7,13 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["critical_pressure_ratio", "orifice_mass_flow", "choked_flow_factor", "is_choked"]
+__all__ = ["critical_pressure_ratio", "orifice_mass_flow", "choked_flow_factor", "is_choked", "LINEAR_BELOW"]
+
+#: Relative pressure difference (p_up − p_down)/p_up below which the orifice law's square root is replaced by a
+#: C¹ quadratic through the origin. At 1 bar this is 10 Pa, a jet velocity of about 4 m/s, where a vent of a few
+#: centimetres is near laminar flow anyway. It keeps the law Lipschitz at Δp = 0, so two cavities equalise
+#: exponentially instead of landing on Δp = 0 in finite time and chattering across it.
+LINEAR_BELOW = 1e-4
 
 
 def critical_pressure_ratio(gamma: float) -> float:
@@ -110,8 +116,11 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
 
     Notes
     -----
-    The bracket is evaluated as q^(2/γ)·(1 − q^((γ−1)/γ)), which keeps full relative precision as q → 1 (Δp → 0),
-    where the flow behaves like sqrt(Δp) and has an infinite slope.
+    The bracket is evaluated as q^(2/γ)·(1 − q^((γ−1)/γ)), which keeps full relative precision as q → 1. The exact
+    law behaves like sqrt(Δp) there, with an infinite slope; below a relative pressure difference of
+    :data:`LINEAR_BELOW` (1e-4) its square root is replaced by the quadratic a·s + b·s² (s = Δp/p_e) that matches
+    its value and slope at s = 1e-4, so the law is C¹ and linear in Δp at Δp → 0 (the flow there is laminar
+    anyway). Above that the law is exact.
 
     References
     ----------
@@ -125,10 +134,34 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
     0.046671
     >>> orifice_mass_flow(1.0e5, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4)
     0.0
+
+    Near Δp = 0 the flow is linear in Δp (C¹ join at Δp/p = 1e-4):
+
+    >>> a = orifice_mass_flow(1.0e5 + 0.01, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4)
+    >>> b = orifice_mass_flow(1.0e5 + 0.02, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4)
+    >>> round(b / a, 3)
+    1.999
     """
     if p_down >= p_up or area <= 0.0:
         return 0.0
-    q = max(p_down / p_up, critical_pressure_ratio(gamma))
-    # q^(2/g) - q^((g+1)/g) = q^(2/g) * (1 - q^((g-1)/g)); expm1 keeps precision near q = 1.
-    bracket = q ** (2.0 / gamma) * -math.expm1(math.log(q) * (gamma - 1.0) / gamma)
-    return Cd * area * p_up / math.sqrt(R * T_up) * math.sqrt(2.0 * gamma / (gamma - 1.0) * bracket)
+    s = (p_up - p_down) / p_up
+    if s >= LINEAR_BELOW:
+        root = _root_bracket(max(p_down / p_up, critical_pressure_ratio(gamma)), gamma)
+    else:  # a s + b s^2 matching value and slope of the exact root at s = LINEAR_BELOW
+        d = LINEAR_BELOW
+        f, fp = _root_bracket(1.0 - d, gamma), _root_bracket_slope(d, gamma)
+        root = s * ((2.0 * f - fp * d) / d + s * (fp * d - f) / (d * d))
+    return Cd * area * p_up / math.sqrt(R * T_up) * math.sqrt(2.0 * gamma / (gamma - 1.0)) * root
+
+
+def _root_bracket(q: float, gamma: float) -> float:
+    """sqrt(q^(2/γ) − q^((γ+1)/γ)) = sqrt(q^(2/γ)·(1 − q^((γ−1)/γ))); expm1 keeps precision near q = 1."""
+    return math.sqrt(q ** (2.0 / gamma) * -math.expm1(math.log(q) * (gamma - 1.0) / gamma))
+
+
+def _root_bracket_slope(s: float, gamma: float) -> float:
+    """d/ds of :func:`_root_bracket` at q = 1 − s (analytic)."""
+    q = 1.0 - s
+    g = q ** (2.0 / gamma) - q ** ((gamma + 1.0) / gamma)
+    dg_dq = (2.0 / gamma) * q ** (2.0 / gamma - 1.0) - ((gamma + 1.0) / gamma) * q ** (1.0 / gamma)
+    return -dg_dq / (2.0 * math.sqrt(g))

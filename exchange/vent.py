@@ -7,9 +7,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .orifice import orifice_mass_flow
+from .activation import Activation
+from .laws import OrificeLaw
 
-__all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]
+__all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]  # OrificeLaw re-exported from .laws
 
 
 @dataclass(frozen=True)
@@ -46,20 +47,6 @@ class Ambient:
 
 
 @dataclass(frozen=True)
-class OrificeLaw:
-    """Abaqus ORIFICE: isentropic flow with choking, :func:`exchange.orifice.orifice_mass_flow`.
-
-    Attributes: discharge_coefficient Cd [-].
-    """
-
-    discharge_coefficient: float = 1.0
-
-    def mass_flow(self, up: GasPoint, p_down: float, area: float, t: float) -> float:
-        """Mass flow from ``up`` into a region at ``p_down`` [kg/s], >= 0."""
-        return orifice_mass_flow(up.p, up.T, p_down, up.R, up.gamma, area, self.discharge_coefficient)
-
-
-@dataclass(frozen=True)
 class Exchange:
     """A fluid exchange between cavity ``upstream`` and cavity ``downstream`` (None: ambient).
 
@@ -77,6 +64,8 @@ class Exchange:
     two_way : bool
         To ambient: also let ambient gas flow in when the cavity pressure is below ambient. Between
         cavities flow always follows the pressure difference.
+    activation : Activation or None
+        Time window, pop pressure, amplitude, delta area (None: always open).
     """
 
     name: str
@@ -85,9 +74,14 @@ class Exchange:
     law: object
     area: float
     two_way: bool = False
+    activation: Activation | None = None
 
     def mass_flow(self, a: GasPoint, b: GasPoint, area: float, t: float) -> float:
         """Signed mass flow from side a to side b [kg/s]."""
+        if area <= 0.0:
+            return 0.0
+        if self.law.prescribed:
+            return self.law.mass_flow(a, b.p, area, t)
         if a.p >= b.p:
             return self.law.mass_flow(a, b.p, area, t)
         if self.downstream is None and not self.two_way:
