@@ -65,6 +65,7 @@ class Trajectory:
     """The solution as a chain of dense-output segments, with the solver's statistics and the event log."""
 
     segments: list = field(default_factory=list)
+    modes: list = field(default_factory=list)  # the system's discrete state during each segment
     step_times: list = field(default_factory=list)
     events: list = field(default_factory=list)
     stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
@@ -77,6 +78,12 @@ class Trajectory:
         starts = [s.t_min for s in self.segments]
         i = max(0, min(int(np.searchsorted(starts, t, side="right")) - 1, len(self.segments) - 1))
         return self.segments[i](t)
+
+    def mode_at(self, t: float):
+        """The discrete state (``system.snapshot()``) in force at time t (right limit at a switch)."""
+        starts = [s.t_min for s in self.segments]
+        i = max(0, min(int(np.searchsorted(starts, t, side="right")) - 1, len(self.segments) - 1))
+        return self.modes[i]
 
     def sample(self, times) -> np.ndarray:
         """States at ``times`` (sorted), shape (len(times), n)."""
@@ -201,6 +208,7 @@ def _state_at_event(system, sol, t_event, options, traj):
     traj.stats["rhs_calls"] += tail.nfev
     traj.stats["steps"] += len(tail.t) - 1
     traj.segments.append(tail.sol)
+    traj.modes.append(traj.modes[-1])
     traj.step_times.extend(tail.t[1:])
     return tail.y[:, -1]
 
@@ -234,6 +242,7 @@ def _advance(system, t, y, stop, options, traj):
     st["lu_decompositions"] += sol.nlu
     st["restarts"] += 1
     traj.segments.append(sol.sol)
+    traj.modes.append(system.snapshot() if hasattr(system, "snapshot") else None)
     traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
     t_end, y_end = float(sol.t[-1]), sol.y[:, -1]
     if sol.status != 1:
