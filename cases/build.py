@@ -20,7 +20,9 @@ from exchange.laws import (BulkViscosityLaw, FabricLeakageLaw, FluxLaw, GraefeLa
 from exchange.leakage_table import LeakageTable
 from exchange.vent import Ambient, Exchange
 
+from .build_geometry import Driver, build_bodies, build_leak_area, build_wrapped_volume, cavity_mesh
 from .errors import SceneError
+from .scene_network import SceneNetwork
 from .scene import Scene
 from .tables_io import read_table
 
@@ -36,6 +38,7 @@ class Model:
     options: SolverOptions
     output_times: np.ndarray
     modelled: dict
+    geometry: dict | None = None
 
 
 def build_model(scene: Scene) -> Model:
@@ -43,18 +46,23 @@ def build_model(scene: Scene) -> Model:
     amb = scene.ambient
     y_amb = gas.mass_fractions(amb.gas, molar=amb.gas_by_mole)
     ambient = Ambient(amb.pressure, amb.temperature, tuple(y_amb), gas.mixture(y_amb))
-    cavities = tuple(_cavity(scene, gas, i) for i in range(len(scene.cavity)))
+    t_end = scene.time.end
+    geometric = bool(scene.body) or any(e.leakage_surface or e.leakage_box for e in scene.exchange)
+    geo = _geometry(scene, t_end) if geometric else None
+    cavities = tuple(_cavity(scene, gas, i, geo) for i in range(len(scene.cavity)))
     names = [c.name for c in cavities]
     exchanges = tuple(_exchange(scene, i, names) for i in range(len(scene.exchange)))
-    network = Network(gas, cavities, exchanges, ambient)
-    t_end = scene.time.end
+    if geo is None:
+        network = Network(gas, cavities, exchanges, ambient)
+    else:
+        network = _scene_network(scene, gas, cavities, exchanges, ambient, geo)
     dt = scene.time.output_interval or t_end / 500.0
     n = max(2, int(math.floor(t_end / dt + 1e-9)) + 1)
     times = np.unique(np.append(np.linspace(0.0, (n - 1) * dt, n), t_end))
     s = scene.solver
     options = SolverOptions(method=s.method, rtol=s.rtol, atol=(s.atol or s.rtol / 100) * _scales(network, t_end),
                             max_step=s.max_step or math.inf)
-    return Model(scene, network, options, times, _modelled(scene, cavities))
+    return Model(scene, network, options, times, _modelled(scene, cavities), geo)
 
 
 def _species(scene: Scene) -> tuple:
@@ -121,9 +129,36 @@ def _volume(scene: Scene, i: int):
     return ScaledMeshVolume(v, scale)
 
 
-def _cavity(scene: Scene, gas: GasModel, i: int) -> Cavity:
+def _geometry(scene: Scene, t_end: float) -> dict:
+    """Bodies, the θ driver, wrapped volumes and blocked areas of a scene with geometry."""
+    bodies = build_bodies(scene)
+    meshes = {c.name: cavity_mesh(scene, i) for i, c in enumerate(scene.cavity) if c.mesh}
+    extent = max([float(np.linalg.norm(m.extents)) for m in meshes.values()] + [1e-3])
+    driver = Driver(bodies, t_end, extent)
+    volumes = {c.name: build_wrapped_volume(scene, i, meshes[c.name], driver)
+               for i, c in enumerate(scene.cavity) if c.wrapped_by}
+    areas, surfaces = zip(*[build_leak_area(scene, j, meshes, driver) for j in range(len(scene.exchange))]) \
+        if scene.exchange else ((), ())
+    return {"bodies": bodies, "driver": driver, "volumes": volumes, "areas": areas, "surfaces": surfaces,
+            "meshes": meshes}
+
+
+def _scene_network(scene, gas, cavities, exchanges, ambient, geo):
+    driver = geo["driver"]
+    body, pushed, slope = None, None, None
+    if driver.dynamic is not None:
+        body = driver.dynamic
+        pushed = next((i for i, c in enumerate(scene.cavity) if body.name in c.wrapped_by), None)
+        if pushed is None:
+            raise SceneError(scene.path, "body", f"the dynamic body {body.name!r} wraps no cavity: nothing pushes it")
+        slope = geo["volumes"][scene.cavity[pushed].name].slope
+    return SceneNetwork(gas, cavities, exchanges, ambient, areas=tuple(geo["areas"]), body=body, pushed=pushed,
+                        volume_slope=slope, body_state=driver.state)
+
+
+def _cavity(scene: Scene, gas: GasModel, i: int, geo=None) -> Cavity:
     c = scene.cavity[i]
-    volume = _volume(scene, i)
+    volume = geo["volumes"][c.name] if geo and c.name in geo["volumes"] else _volume(scene, i)
     y = gas.mass_fractions(c.gas, molar=c.gas_by_mole)
     V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
     masses = gas.masses_at(y, c.pressure, c.temperature, V0)
@@ -200,6 +235,9 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
             scale[k + ns] = e
         mass_scales.append(m)
         energy_scales.append(e)
+    if getattr(network, "body", None) is not None:
+        k, v0 = network.body_offset, abs(network.body.motion.initial_velocity)
+        scale[k:k + 2] = (max(v0 * t_end, 1e-3), max(v0, 1e-3))  # displacement [m], speed [m/s]
     m_all, e_all = max(mass_scales), max(energy_scales)
     j = network.ledger_offset
     for _ in network.exchanges:
@@ -209,6 +247,12 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
         scale[j:j + LEDGER_PER_CAVITY] = (m, e, e, e)
         j += LEDGER_PER_CAVITY
     return scale
+
+
+def _body_text(b) -> str:
+    if b.mass:
+        return f"dynamic, mass {b.mass} kg, initial speed {b.initial_velocity} m/s, gravity {b.gravity} m/s^2"
+    return "prescribed displacement table" if b.displacement_table else f"prescribed speed {b.velocity} m/s"
 
 
 def _activation_text(e) -> str:
@@ -229,9 +273,14 @@ def _modelled(scene: Scene, cavities) -> dict:
     return {
         "cavities": {c.name: {"energy": c.energy, "volume": type(c.volume).__name__,
                               "inflators": [type(i).__name__ for i in c.inflators]} for c in cavities},
-        "exchanges": {e.name: {"law": e.law, "from": e.from_, "to": e.to, "two_way": e.two_way, "area": "fixed",
+        "exchanges": {e.name: {"law": e.law, "from": e.from_, "to": e.to, "two_way": e.two_way,
+                               "area": "leakage surface" if (e.leakage_surface or e.leakage_box) else "fixed",
                                "activation": _activation_text(e)} for e in scene.exchange},
         "gas": "ideal-gas mixture, species masses tracked",
-        "geometry": "none" if all(not c.mesh for c in scene.cavity) else "closed mesh volume",
-        "blockage": "not modelled", "bodies": "none", "contact": "not modelled",
+        "geometry": "none" if all(not c.mesh for c in scene.cavity) else "closed mesh volume"
+                    + ("; cavity nodes wrapped around bodies" if any(c.wrapped_by for c in scene.cavity) else ""),
+        "blockage": {e.name: f"leakage surface blocked by {list(e.blocked_by)}, tolerance {e.contact_tolerance} m"
+                     for e in scene.exchange if e.blocked_by} or "not modelled",
+        "bodies": {b.name: _body_text(b) for b in scene.body} or "none",
+        "contact": "not modelled (bodies are rigid; cavity nodes are placed on them, no contact force model)",
     }

@@ -119,7 +119,53 @@ def run(model: Model, *, progress: bool = False) -> Results:
                                          "final pressure [Pa]": final.pressure,
                                          "final temperature [K]": final.temperature,
                                          "final mass [kg]": final.mixture.mass}
+    if model.geometry is not None:
+        summary["blockage"] = blockage_summary(model, traj, history)
+        if getattr(net, "body", None) is not None:
+            summary["impactor"] = impactor_summary(model, traj)
     return Results(model, traj, history_columns(model), history, summary)
+
+
+def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dict:
+    """Per blocked exchange: time of first blockage, minimum leakage area and when (exact: areas are
+    piecewise constant and change only at crossings)."""
+    out, t_end = {}, model.scene.time.end
+    for j, ga in enumerate(model.network.areas):
+        if ga is None:
+            continue
+        track, name = ga.track, model.network.exchanges[j].name
+        if ga.by_time:
+            starts = np.concatenate([[0.0], track.crossings])
+            inside = starts <= t_end
+            areas, times, actives = track.areas[inside], starts[inside], np.array(track.actives)[inside]
+        else:
+            i0 = int(np.searchsorted(track.crossings, 0.0, side="right"))
+            times, idx = [0.0], [i0]
+            for t, label in traj.events:
+                if label.startswith(f"{name}:contact-"):
+                    idx.append(idx[-1] + (1 if label.endswith("-up") else -1))
+                    times.append(t)
+            areas, actives = track.areas[idx], np.array(track.actives)[idx]
+            times = np.array(times)
+        k = int(np.argmin(areas))
+        blocked = np.flatnonzero(np.asarray(actives) > 0)
+        out[name] = {"first blockage time [s]": float(times[blocked[0]]) if blocked.size else None,
+                     "minimum leakage area [m^2]": float(areas[k]), "minimum leakage area time [s]": float(times[k]),
+                     "total leakage surface area [m^2]": track.total_area, "area switches": len(times) - 1}
+    return out
+
+
+def impactor_summary(model: Model, traj: Trajectory) -> dict:
+    """Energy the dynamic body gave up (peak and final), its deepest displacement and final speed."""
+    net = model.network
+    ts = np.unique(np.concatenate([traj.step_times, [traj.t_final]]))
+    ys = traj.sample(ts)
+    energy = np.array([net.impactor_energy(y) for y in ys])
+    k = net.body_offset
+    return {"body": net.body.name, "absorbed energy peak [J]": float(energy.max()),
+            "absorbed energy final [J]": float(energy[-1]), "deepest displacement [m]": float(ys[:, k].max()),
+            "deepest displacement time [s]": float(ts[int(np.argmax(ys[:, k]))]),
+            "final speed [m/s]": float(ys[-1, k + 1])}
 
 
 def run_scene(path_or_scene, *, progress: bool = False) -> Results:

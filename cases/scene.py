@@ -17,7 +17,7 @@ from .errors import SceneError
 from .schema import key, parse, suggest
 from .tables_io import read_table, table_or_constant
 
-__all__ = ["Scene", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
+__all__ = ["Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
            "ExchangeSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
@@ -94,6 +94,8 @@ class CavitySpec:
     heat_transfer_coefficient: float = key("heat_loss: h_c", "W/(m^2 K)", default=0.0, check="nonnegative")
     heat_transfer_area: float = key("heat_loss: area A", "m^2", default=0.0, check="nonnegative")
     inflator: tuple = key("inflators ([[cavity.inflator]] tables)", default=())
+    wrapped_by: tuple = key("bodies whose surface the cavity mesh's nodes are placed on where they would "
+                            "penetrate (the cushion wraps the impactor)", default=())
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -133,6 +135,32 @@ class ExchangeSpec:
     amplitude: object = key("activation: area multiplier, a number or CSV (time [s], [-])", default=None)
     delta_area: bool = key("activation: current leakage area minus the area at activation (Abaqus DELTA "
                            "LEAKAGE AREA)", default=False)
+    leakage_surface: str = key("leakage surface mesh file (triangles or quads, metres); the area is then its "
+                               "unblocked area", default="")
+    leakage_box: tuple = key("or: the faces of the `from` cavity's mesh inside this box: xmin, ymin, zmin, "
+                             "xmax, ymax, zmax", "m", default=())
+    blocked_by: tuple = key("bodies that block the leakage surface", default=())
+    contact_tolerance: float = key("a leakage node is blocked when its gap to a body is <= this", "m",
+                                   default=0.0, check="nonnegative")
+    effective_area: float = key("with a leakage surface: area = effective_area·(1 − obstruction/total)", "m^2",
+                                default=0.0, check="nonnegative")
+    permeability: float = key("fraction of the blocked area that still leaks (Radioss Bvent)", default=0.0,
+                              check="fraction")
+
+
+@dataclass(frozen=True, kw_only=True)
+class BodySpec:
+    name: str = key("body name (named by `blocked_by` and `wrapped_by`)")
+    mesh: str = key("body surface mesh file (metres; convex if it wraps a cavity)", default="")
+    sphere: tuple = key("a sphere instead of a mesh: centre x, y, z and radius", "m", default=())
+    sphere_subdivisions: int = key("icosphere subdivisions of `sphere` (4: 5120 faces)", default=4)
+    box: tuple = key("a box instead of a mesh: centre x, y, z and extents lx, ly, lz", "m", default=())
+    axis: tuple = key("direction of motion (normalised)", default=(0.0, 0.0, -1.0))
+    velocity: float = key("prescribed constant speed along `axis`", "m/s", default=0.0, check="finite")
+    displacement_table: str = key("prescribed CSV (time [s], displacement along axis [m])", default="")
+    mass: float = key("dynamic body: mass (0: prescribed motion)", "kg", default=0.0, check="nonnegative")
+    initial_velocity: float = key("dynamic body: initial speed along `axis`", "m/s", default=0.0, check="finite")
+    gravity: float = key("dynamic body: acceleration along `axis`", "m/s^2", default=0.0, check="finite")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -144,6 +172,7 @@ class Scene:
     species: tuple = key("[[species]] tables: user gas data", default=())
     cavity: tuple = key("[[cavity]] tables")
     exchange: tuple = key("[[exchange]] tables", default=())
+    body: tuple = key("[[body]] tables: rigid bodies that block vents and wrap cavities", default=())
     _path: str = ""
 
     @property
@@ -199,6 +228,19 @@ def scene_from_dict(data: dict, path) -> Scene:
     def table(name):
         return lambda v, where: None if v is None else table_or_constant(v, base, path, where, name)
 
+    def vector(n):
+        def convert(v, where):
+            if (not isinstance(v, list) or len(v) != n
+                    or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in v)):
+                raise SceneError(path, where, f"expected a list of {n} finite numbers, got {v!r}")
+            return tuple(float(x) for x in v)
+        return convert
+
+    def names_list(v, where):
+        if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
+            raise SceneError(path, where, f"expected a list of body names, got {v!r}")
+        return tuple(v)
+
     def number_or_table(name):
         def convert(v, where):
             if isinstance(v, (int, float)) and not isinstance(v, bool):
@@ -210,14 +252,15 @@ def scene_from_dict(data: dict, path) -> Scene:
 
     inflator_nested = {"gas": composition, "temperature": table("temperature [K]"),
                        "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]")}
-    cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested)}
+    cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested), "wrapped_by": names_list}
     scene = parse(Scene, data, path, "", nested={
         "time": lambda v, w: parse(TimeSpec, v, path, w),
         "solver": lambda v, w: parse(SolverSpec, v, path, w),
         "ambient": lambda v, w: parse(AmbientSpec, v, path, w, nested={"gas": composition}),
         "species": many(SpeciesSpec, {"cp": lambda v, w: tuple(v)}),
         "cavity": many(CavitySpec, cavity_nested),
-        "exchange": many(ExchangeSpec, {"discharge_coefficient": number_or_table("discharge coefficient [-]"),
+        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3)}),
+        "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,"discharge_coefficient": number_or_table("discharge coefficient [-]"),
                                         "flux_amplitude": table("flux amplitude [-]"),
                                         "amplitude": table("area amplitude [-]")}),
     })
@@ -249,6 +292,7 @@ def _check_cross_references(scene: Scene, path) -> None:
                                                       "heat_transfer_area > 0")
         for j, inf in enumerate(c.inflator):
             _check_inflator(inf, path, f"{where}.inflator[{j}]")
+    _check_bodies(scene, path)
     for i, e in enumerate(scene.exchange):
         for side, value in (("from", e.from_), ("to", e.to)):
             if value not in names and not (side == "to" and value == "ambient"):
@@ -263,6 +307,28 @@ LAW_KEYS = {"mass_rate_leakage": ("leakage_table",), "volume_rate_leakage": ("le
             "bulk_viscosity": ("viscous_resistance",), "linear_resistance": ("conductance",)}
 
 
+def _check_bodies(scene: Scene, path) -> None:
+    names = [b.name for b in scene.body]
+    for i, b in enumerate(scene.body):
+        shapes = [k for k in ("mesh", "sphere", "box") if getattr(b, k)]
+        if len(shapes) != 1:
+            raise SceneError(path, f"body[{i}]", f"give exactly one of mesh, sphere, box (got {shapes or 'none'})")
+        if b.mesh and not (scene.base / b.mesh).is_file():
+            raise SceneError(path, f"body[{i}].mesh", f"file {b.mesh!r} does not exist")
+        if b.displacement_table:
+            read_table(scene.base / b.displacement_table, path, f"body[{i}].displacement_table", "displacement [m]")
+        if b.mass and (b.velocity or b.displacement_table):
+            raise SceneError(path, f"body[{i}].mass", "a dynamic body (mass > 0) has no prescribed velocity or table")
+    if sum(1 for b in scene.body if b.mass) > 1:
+        raise SceneError(path, "body", "at most one dynamic body (mass > 0) per scene")
+    refs = [(f"cavity[{i}].wrapped_by", c.wrapped_by) for i, c in enumerate(scene.cavity)]
+    refs += [(f"exchange[{i}].blocked_by", e.blocked_by) for i, e in enumerate(scene.exchange)]
+    for where, used in refs:
+        for n in used:
+            if n not in names:
+                raise SceneError(path, where, f"no body named {n!r}{suggest(n, names)}")
+
+
 def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
     for k in LAW_KEYS.get(e.law, ()):
         if not getattr(e, k):
@@ -271,7 +337,20 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
         raise SceneError(path, f"{where}.leakage_table", f"file {e.leakage_table!r} does not exist")
     if e.law in ("mass_flux", "volume_flux") and e.flux == 0.0:
         raise SceneError(path, f"{where}.flux", f"required (non-zero) for law {e.law!r}")
-    if not e.area > 0:
+    geometric = bool(e.leakage_surface or e.leakage_box)
+    if e.leakage_surface and e.leakage_box:
+        raise SceneError(path, f"{where}.leakage_box", "give leakage_surface or leakage_box, not both")
+    if e.leakage_surface and not (scene.base / e.leakage_surface).is_file():
+        raise SceneError(path, f"{where}.leakage_surface", f"file {e.leakage_surface!r} does not exist")
+    if e.leakage_box and not next(c for c in scene.cavity if c.name == e.from_).mesh:
+        raise SceneError(path, f"{where}.leakage_box", "selects faces of the `from` cavity's mesh: it has none")
+    if e.blocked_by and not geometric:
+        raise SceneError(path, f"{where}.blocked_by", "needs leakage_surface or leakage_box")
+    if geometric and e.blocked_by and not e.contact_tolerance > 0:
+        raise SceneError(path, f"{where}.contact_tolerance", "expected a tolerance > 0 [m] with blocked_by")
+    if geometric and e.area:
+        raise SceneError(path, f"{where}.area", "the area comes from the leakage surface: use effective_area")
+    if not geometric and not e.area > 0:
         raise SceneError(path, f"{where}.area", "expected a flow area > 0 [m^2]")
     if e.close_time and e.close_time <= e.open_time:
         raise SceneError(path, f"{where}.close_time", f"must be later than open_time ({e.open_time} s)")

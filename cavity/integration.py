@@ -215,6 +215,8 @@ def _state_at_event(system, sol, t_event, options, traj):
 
 def _advance(system, t, y, stop, options, traj):
     """One solve_ivp call from t towards stop; returns where it ended (stop, or an event)."""
+    if hasattr(system, "begin_segment"):
+        system.begin_segment(t, stop, y)
     switches = system.events()
     dirs = _directions(system, switches, t, y, traj.last_event, SWITCH_NEAR_ZERO_PER_RTOL * options.rtol)
     switches = [g for g, d in zip(switches, dirs) if d is not None]
@@ -223,8 +225,6 @@ def _advance(system, t, y, stop, options, traj):
     remaining = options.max_steps - traj.stats["steps"]
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
-    if hasattr(system, "begin_segment"):
-        system.begin_segment(t, stop)
     try:
         sol = solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
                         max_step=options.max_step, dense_output=True, events=events or None)

@@ -140,8 +140,8 @@ class Network:
             flows.append((mdot, a if mdot >= 0.0 else b))
         return flows
 
-    def begin_segment(self, t0: float, t1: float) -> None:
-        """The integrator is about to integrate over [t0, t1], which holds no breakpoint inside."""
+    def begin_segment(self, t0: float, t1: float, y0=None) -> None:
+        """The integrator is about to integrate over [t0, t1] from y0; no breakpoint lies inside."""
         self._segment_end = t1
 
     def input_time(self, t: float) -> float:

@@ -1,0 +1,142 @@
+"""Build the moving geometry of a scene: bodies, wrapped cavity volumes, blocked leakage areas."""
+from __future__ import annotations
+
+import numpy as np
+
+import blockage
+from cavity.volume import closed_mesh_volume, MeshError
+
+from .bodies import Body, DynamicMotion, PrescribedMotion, unit
+from .errors import SceneError
+from .geometry import Wrapper, blocked_area_track, wrapped_volume
+from .scene_network import BodyState, GeometricArea
+from .tables_io import read_table
+
+__all__ = ["build_bodies", "Driver", "build_wrapped_volume", "build_leak_area", "load_mesh"]
+
+
+def load_mesh(scene, file: str, where: str):
+    import trimesh
+
+    try:
+        return trimesh.load(scene.base / file, force="mesh", process=True)
+    except Exception as exc:  # trimesh raises many types for unreadable files
+        raise SceneError(scene.path, where, f"cannot read mesh {file!r}: {exc}") from None
+
+
+def _body_mesh(scene, spec, where):
+    import trimesh
+
+    if spec.mesh:
+        return load_mesh(scene, spec.mesh, f"{where}.mesh")
+    if spec.sphere:
+        x, y, z, r = spec.sphere
+        m = trimesh.creation.icosphere(subdivisions=spec.sphere_subdivisions, radius=r)
+        m.apply_translation((x, y, z))
+        return m
+    x, y, z, lx, ly, lz = spec.box
+    m = trimesh.creation.box(extents=(lx, ly, lz))
+    m.apply_translation((x, y, z))
+    return m
+
+
+def build_bodies(scene) -> dict:
+    """{name: (Body, Blocker)} for every [[body]]."""
+    out = {}
+    for i, b in enumerate(scene.body):
+        where = f"body[{i}]"
+        try:
+            axis = unit(b.axis, f"{where}.axis")
+        except ValueError as exc:
+            raise SceneError(scene.path, f"{where}.axis", str(exc)) from None
+        if b.mass:
+            motion = DynamicMotion(b.mass, b.initial_velocity, b.gravity)
+        else:
+            table = (read_table(scene.base / b.displacement_table, scene.path, f"{where}.displacement_table",
+                                "displacement [m]") if b.displacement_table else None)
+            motion = PrescribedMotion(b.velocity, table)
+        mesh = _body_mesh(scene, b, where)
+        out[b.name] = (Body(b.name, mesh, axis, motion), blockage.Blocker(mesh))
+    return out
+
+
+class Driver:
+    """What θ is: time (all bodies prescribed) or the dynamic body's displacement s."""
+
+    def __init__(self, bodies: dict, t_end: float, extent: float):
+        self.bodies = bodies
+        dyn = [b for b, _ in bodies.values() if b.dynamic]
+        self.dynamic = dyn[0] if dyn else None
+        self.state = BodyState()
+        self.lo, self.hi = (0.0, t_end) if self.dynamic is None else (-0.05 * extent, extent)
+
+    def displacement(self, body, theta):
+        if self.dynamic is None:
+            return body.motion.displacement(theta)
+        return theta if body is self.dynamic else 0.0
+
+    def transforms(self, names):
+        return lambda theta: [self.bodies[n][0].transform(self.displacement(self.bodies[n][0], theta)) for n in names]
+
+    def placed(self, names):
+        tf = self.transforms(names)
+        return lambda theta: list(zip([self.bodies[n][1] for n in names], tf(theta)))
+
+    def wrapper(self, names) -> Wrapper:
+        return Wrapper([self.bodies[n] for n in names], self.transforms(names))
+
+    @property
+    def breakpoints(self):
+        return tuple(b for body, _ in self.bodies.values() for b in body.motion.breakpoints)
+
+
+def build_wrapped_volume(scene, i, mesh, driver: Driver):
+    """The volume model of cavity i wrapped around its bodies."""
+    c = scene.cavity[i]
+    wrapper = driver.wrapper(c.wrapped_by)
+    if driver.dynamic is None:
+        return wrapped_volume(mesh, wrapper, driver.lo, driver.hi, lambda t: t, lambda t: 1.0, driver.breakpoints)
+    if driver.dynamic.name not in c.wrapped_by:
+        raise SceneError(scene.path, f"cavity[{i}].wrapped_by", "with a dynamic body, it must be among wrapped_by")
+    st = driver.state
+    return wrapped_volume(mesh, wrapper, driver.lo, driver.hi, lambda t: st.s, lambda t: st.v)
+
+
+def build_leak_area(scene, j, cavity_meshes: dict, driver: Driver):
+    """The GeometricArea of exchange j (or None when it has a plain area)."""
+    e, where = scene.exchange[j], f"exchange[{j}]"
+    if not (e.leakage_surface or e.leakage_box):
+        return None, None
+    wrap = None
+    if e.leakage_surface:
+        try:
+            surface = blockage.LeakageSurface.read(scene.base / e.leakage_surface)
+        except Exception as exc:
+            raise SceneError(scene.path, f"{where}.leakage_surface", f"cannot read {e.leakage_surface!r}: {exc}") \
+                from None
+    else:
+        mesh = cavity_meshes[e.from_]
+        lo, hi = np.array(e.leakage_box[:3]), np.array(e.leakage_box[3:])
+        try:
+            surface = blockage.LeakageSurface.from_region(mesh, box=(lo, hi))
+        except ValueError as exc:
+            raise SceneError(scene.path, f"{where}.leakage_box", str(exc)) from None
+        cav = next(c for c in scene.cavity if c.name == e.from_)
+        if cav.wrapped_by:
+            wrap = driver.wrapper(cav.wrapped_by)
+    base = surface.vertices.copy()
+    positions = (lambda th: wrap.place(base, th)) if wrap is not None else (lambda th: base)
+    eff = e.effective_area or None
+    track = blocked_area_track(surface, positions, driver.placed(e.blocked_by), e.contact_tolerance or 1e-300,
+                               driver.lo, driver.hi, effective_area=eff, permeability=e.permeability)
+    return GeometricArea(track, driver.dynamic is None), (surface, positions)
+
+
+def cavity_mesh(scene, i):
+    c = scene.cavity[i]
+    mesh = load_mesh(scene, c.mesh, f"cavity[{i}].mesh")
+    try:
+        closed_mesh_volume(mesh, name=c.mesh)
+    except MeshError as exc:
+        raise SceneError(scene.path, f"cavity[{i}].mesh", str(exc)) from None
+    return mesh
