@@ -125,7 +125,10 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver: Driver):
         if cav.wrapped_by:
             wrap = driver.wrapper(cav.wrapped_by)
     base = surface.vertices.copy()
-    positions = (lambda th: wrap.place(base, th)) if wrap is not None else (lambda th: base)
+    def positions(theta, nodes=None):
+        x = base if nodes is None else base[nodes]
+        return wrap.place(x, theta) if wrap is not None else x
+
     eff = e.effective_area or None
     track = blocked_area_track(surface, positions, driver.placed(e.blocked_by), e.contact_tolerance or 1e-300,
                                driver.lo, driver.hi, effective_area=eff, permeability=e.permeability)

@@ -26,6 +26,20 @@ def _run(args) -> int:
     return 0
 
 
+def _check(args) -> int:
+    from .library import CASES, check_all, format_table
+
+    unknown = [n for n in args.cases if n not in CASES]
+    if unknown:
+        from .schema import suggest
+
+        raise SceneError("ventsim check", "", f"unknown case {unknown[0]!r}{suggest(unknown[0], CASES)}; "
+                                               f"cases: {', '.join(CASES)}")
+    checks = check_all(args.cases or None, update=args.update)
+    print(format_table(checks))
+    return 0 if all(c.passed for c in checks) else 1
+
+
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="ventsim", description="Gas cavities venting through blockable leakage surfaces.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -34,6 +48,10 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     r.add_argument("--quiet", action="store_true", help="print nothing but errors")
     r.set_defaults(func=_run)
+    c = sub.add_parser("check", help="run the case library and compare with the reference histories")
+    c.add_argument("cases", nargs="*", help="case names (default: all)")
+    c.add_argument("--update", action="store_true", help="write the reference histories instead of comparing")
+    c.set_defaults(func=_check)
     from .sweep import add_sweep_parser
     add_sweep_parser(sub)
     return p

@@ -83,10 +83,25 @@ class WrappedVolume:
 
 
 def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta_rate, breakpoints=()):
-    """Sample the wrapped volume on [lo, hi] and fit the spline."""
+    """Sample the wrapped volume on [lo, hi] and fit the spline.
+
+    Only faces with a moved node change their divergence-theorem term, so each sample costs the projection of
+    the nodes near the bodies plus the volume change of their faces.
+    """
     grid = np.linspace(lo, hi, GRID_POINTS)
-    faces = mesh.faces
-    vols = [mesh_volume(wrapper.place(mesh.vertices, th), faces) for th in grid]
+    x0, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
+    v0 = mesh_volume(x0, faces)
+    node_faces = mesh.vertex_faces  # (n, k) padded with -1
+    vols = []
+    for th in grid:
+        x = wrapper.place(x0, th)
+        moved = np.flatnonzero(np.any(x != x0, axis=1))
+        if not moved.size:
+            vols.append(v0)
+            continue
+        touched = np.unique(node_faces[moved])
+        touched = touched[touched >= 0]
+        vols.append(v0 + mesh_volume(x, faces[touched]) - mesh_volume(x0, faces[touched]))
     return WrappedVolume(CubicSpline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
 
 
@@ -122,8 +137,8 @@ def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, 
     ----------
     surface : blockage.LeakageSurface
         The leakage surface at θ = lo (its faces; vertices are given by ``node_positions``).
-    node_positions : callable θ -> (n, 3)
-        Leakage-node coordinates [m] at θ (moved, e.g. wrapped around a body).
+    node_positions : callable (θ, nodes or None) -> (n, 3)
+        Coordinates [m] of the leakage nodes ``nodes`` (all when None) at θ (moved, e.g. wrapped around a body).
     blockers : callable θ -> list of (Blocker, 4x4)
         The blocking bodies placed at θ.
     tolerance : float
@@ -132,9 +147,7 @@ def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, 
     cutoff = 4.0 * tolerance
 
     def gaps(theta, nodes=None):
-        x = node_positions(theta)
-        if nodes is not None:
-            x = x[nodes]
+        x = node_positions(theta, nodes)
         g = np.full(len(x), np.inf)
         for blocker, T in blockers(theta):
             g = np.minimum(g, blocker.distances(x, cutoff=cutoff, transform=T).distances)
@@ -156,7 +169,7 @@ def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, 
     areas, actives = [], []
     for a, b in zip(edges[:-1], edges[1:]):
         mid = 0.5 * (a + b)
-        leak = surface.with_vertices(node_positions(mid))
+        leak = surface.with_vertices(node_positions(mid, None))
         res = blockage.evaluate(leak, blockers(mid), tolerance, effective_area=effective_area,
                                 permeability=permeability)
         areas.append(res.leak_area)

@@ -1,0 +1,93 @@
+"""The case library: every scene with a reference history, and the regression check that compares them.
+
+A case passes when each history column differs from its reference by at most ``RTOL`` times the column's
+largest magnitude. The scenes integrate at rtol 1e-8, so a change of machine or library version moves the
+histories by far less than 1e-6; a change of physics or numerics moves them by more.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .output import write_history
+from .runner import run_scene
+
+__all__ = ["CASES", "RTOL", "CaseCheck", "check_case", "check_all", "reference_path"]
+
+HERE = Path(__file__).resolve().parent
+#: Regression tolerance: error relative to each column's largest magnitude.
+RTOL = 1e-6
+CASES = {
+    "blowdown_choked": "verification/blowdown_choked.toml",
+    "blowdown_isothermal": "verification/blowdown_isothermal.toml",
+    "blowdown_subsonic": "verification/blowdown_subsonic.toml",
+    "fill_constant": "verification/fill_constant.toml",
+    "compression_mesh": "verification/compression_mesh.toml",
+    "airbag_vented": "airbag_vented.toml",
+    "airbag_impactor": "airbag_impactor.toml",
+    "airbag_impactor_dynamic": "airbag_impactor_dynamic.toml",
+    "seal_vent": "seal_vent.toml",
+}
+
+
+@dataclass
+class CaseCheck:
+    name: str
+    error: float
+    worst_column: str
+    passed: bool
+    wall: float
+    message: str = ""
+
+
+def reference_path(name: str) -> Path:
+    return HERE / "reference" / f"{name}.csv"
+
+
+def column_errors(columns, history, ref_columns, reference) -> dict:
+    """Per column: max |sim − ref| / max |ref| (inf when the shapes or names differ)."""
+    if list(columns) != list(ref_columns) or history.shape != reference.shape:
+        return {"(shape or columns)": np.inf}
+    scale = np.maximum(np.max(np.abs(reference), axis=0), 1e-300)
+    err = np.max(np.abs(history - reference), axis=0) / scale
+    return dict(zip(columns, err))
+
+
+def read_reference(path: Path):
+    with path.open() as fh:
+        header = fh.readline().strip().split(",")
+    return header, np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+
+
+def check_case(name: str, *, update: bool = False) -> CaseCheck:
+    """Run case ``name`` and compare it with (or, with ``update``, write) its reference history."""
+    start = time.perf_counter()
+    results = run_scene(HERE / CASES[name])
+    wall = time.perf_counter() - start
+    ref = reference_path(name)
+    if update:
+        write_history(ref, results.columns, results.history)
+        return CaseCheck(name, 0.0, "", True, wall, "reference written")
+    if not ref.is_file():
+        return CaseCheck(name, np.inf, "", False, wall, f"no reference {ref.name}: run ventsim check --update")
+    errors = column_errors(results.columns, results.history, *read_reference(ref))
+    worst = max(errors, key=errors.get)
+    return CaseCheck(name, float(errors[worst]), worst, errors[worst] <= RTOL, wall)
+
+
+def check_all(names=None, *, update: bool = False) -> list:
+    return [check_case(n, update=update) for n in (names or CASES)]
+
+
+def format_table(checks) -> str:
+    rows = [f"{'case':<26} {'status':<6} {'max error':>10} {'tolerance':>10} {'wall [s]':>9}  worst column"]
+    for c in checks:
+        status = "PASS" if c.passed else "FAIL"
+        rows.append(f"{c.name:<26} {status:<6} {c.error:>10.2e} {RTOL:>10.0e} {c.wall:>9.3f}  "
+                    f"{c.worst_column}{(' ' + c.message) if c.message else ''}")
+    n_fail = sum(not c.passed for c in checks)
+    rows.append(f"{len(checks) - n_fail} passed, {n_fail} failed")
+    return "\n".join(rows)

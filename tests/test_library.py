@@ -1,0 +1,30 @@
+"""Regression: every case of the library reproduces its reference history (tolerance: cases.library.RTOL)."""
+import numpy as np
+import pytest
+
+from cases.library import CASES, RTOL, check_case, column_errors, read_reference, reference_path
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_case_matches_reference(name):
+    result = check_case(name)
+    assert result.passed, f"{name}: {result.worst_column} differs by {result.error:.3e} > {RTOL} {result.message}"
+
+
+def test_check_detects_a_changed_history():
+    cols, ref = read_reference(reference_path("blowdown_choked"))
+    changed = ref.copy()
+    changed[-1, 1] *= 1 + 10 * RTOL
+    errors = column_errors(cols, changed, cols, ref)
+    assert errors["tank.pressure [Pa]"] > RTOL and errors["time [s]"] == 0.0
+    assert column_errors(cols[:-1], ref[:, :-1], cols, ref) == {"(shape or columns)": np.inf}
+
+
+def test_cli_check_prints_table(capsys):
+    from cases.cli import main
+
+    assert main(["check", "fill_constant", "blowdown_choked"]) == 0
+    out = capsys.readouterr().out
+    assert "fill_constant" in out and "PASS" in out and "2 passed, 0 failed" in out
+    assert main(["check", "fill_constnt"]) == 2
+    assert "did you mean 'fill_constant'" in capsys.readouterr().err
