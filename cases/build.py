@@ -8,7 +8,10 @@ import numpy as np
 
 from cavity.cavity import Cavity
 from cavity.gas import GasModel
+from cavity.hydraulic import HydraulicCavity
+from cavity.tables import Table
 from cavity.inflator import MassTemperatureInflator, TankTestInflator
+from cavity.inflator_orifice import DualPressureInflator, PressureMassInflator
 from cavity.integration import SolverOptions
 from cavity.species import Species, builtin_species, species_from_coolprop
 from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, TableVolume, closed_mesh_volume
@@ -156,9 +159,20 @@ def _scene_network(scene, gas, cavities, exchanges, ambient, geo):
                         volume_slope=slope, body_state=driver.state)
 
 
-def _cavity(scene: Scene, gas: GasModel, i: int, geo=None) -> Cavity:
+def _hydraulic(scene: Scene, i: int, volume) -> HydraulicCavity:
+    c = scene.cavity[i]
+    T = (read_table(scene.base / c.temperature_table, scene.path, f"cavity[{i}].temperature_table",
+                    "temperature [K]") if c.temperature_table else Table((0.0,), (c.temperature,)))
+    V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
+    return HydraulicCavity(c.name, volume, c.density * V0, c.density, c.bulk_modulus, c.pressure, c.temperature, T,
+                           c.thermal_expansion, c.added_volume, c.minimum_volume)
+
+
+def _cavity(scene: Scene, gas: GasModel, i: int, geo=None):
     c = scene.cavity[i]
     volume = geo["volumes"][c.name] if geo and c.name in geo["volumes"] else _volume(scene, i)
+    if c.fluid == "hydraulic":
+        return _hydraulic(scene, i, volume)
     y = gas.mass_fractions(c.gas, molar=c.gas_by_mole)
     V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
     masses = gas.masses_at(y, c.pressure, c.temperature, V0)
@@ -172,8 +186,14 @@ def _inflator(gas: GasModel, inf):
     mix = gas.mixture(y)  # 1 kg of inflator gas
     if inf.type == "mass_temperature":
         return MassTemperatureInflator(inf.name, inf.mass_flow, inf.temperature, tuple(y), mix, inf.start, inf.scale)
-    return TankTestInflator(inf.name, inf.tank_pressure, inf.tank_volume, inf.temperature, tuple(y), mix,
-                            inf.start, inf.scale)
+    if inf.type == "tank_test":
+        return TankTestInflator(inf.name, inf.tank_pressure, inf.tank_volume, inf.temperature, tuple(y), mix,
+                                inf.start, inf.scale)
+    if inf.type == "pressure_mass":
+        return PressureMassInflator(inf.name, inf.inflator_pressure, inf.mass_flow, inf.orifice_area,
+                                    inf.discharge_coefficient, tuple(y), mix, inf.start, inf.scale)
+    return DualPressureInflator(inf.name, inf.inflator_pressure, inf.tank_pressure, inf.tank_volume,
+                                inf.orifice_area, inf.discharge_coefficient, tuple(y), mix, inf.start, inf.scale)
 
 
 def _exchange(scene: Scene, i: int, names: list) -> Exchange:
@@ -222,9 +242,9 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
     """A magnitude for every unknown (kg for masses, J for energies), for absolute tolerances."""
     y0 = network.initial_state()
     scale = np.zeros_like(y0)
-    ns = len(network.gas.species)
     mass_scales, energy_scales = [], []
     for cav, k in zip(network.cavities, network.offsets):
+        ns = len(cav.initial_masses)
         inflated = sum(inf.mass_between(0.0, t_end) for inf in cav.inflators)
         m = float(np.sum(y0[k:k + ns])) + inflated
         h_in = max((inf.gas.enthalpy(inf.temperature(0.0)) for inf in cav.inflators), default=0.0)
@@ -271,7 +291,8 @@ def _activation_text(e) -> str:
 def _modelled(scene: Scene, cavities) -> dict:
     """What this scene modelled (and therefore what it did not), for summary.json."""
     return {
-        "cavities": {c.name: {"energy": c.energy, "volume": type(c.volume).__name__,
+        "cavities": {c.name: {"fluid": getattr(c, "kind", "gas"),
+                              "energy": getattr(c, "energy", "isothermal liquid"), "volume": type(c.volume).__name__,
                               "inflators": [type(i).__name__ for i in c.inflators]} for c in cavities},
         "exchanges": {e.name: {"law": e.law, "from": e.from_, "to": e.to, "two_way": e.two_way,
                                "area": "leakage surface" if (e.leakage_surface or e.leakage_box) else "fixed",

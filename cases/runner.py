@@ -51,7 +51,7 @@ def quantities(model: Model, t: float, y, mode=None) -> list:
     states = net.states(t, y)
     row = [t]
     for s in states:
-        row += [s.pressure, s.temperature, s.mixture.mass, s.volume]
+        row += [s.pressure, s.temperature, s.mass if s.mixture is None else s.mixture.mass, s.volume]
     for j, (mdot, _) in enumerate(net.exchange_flows(t, states)):
         row += [mdot, net.exchange_area(j, t)]
     return row
@@ -78,10 +78,11 @@ def peak_pressure(model: Model, traj: Trajectory, i: int) -> tuple[float, float]
 
 def mass_balance(model: Model, y0, y1) -> dict:
     """Per cavity: initial + inflow − outflow − final, and its size relative to the mass handled [kg]."""
-    net, ns = model.network, len(model.network.gas.species)
+    net = model.network
     out = {}
     base = net.ledger_offset + LEDGER_PER_EXCHANGE * len(net.exchanges)
     for i, (cav, k) in enumerate(zip(net.cavities, net.offsets)):
+        ns = len(cav.initial_masses)
         m0, m1 = float(np.sum(y0[k:k + ns])), float(np.sum(y1[k:k + ns]))
         inflow = float(y1[base + LEDGER_PER_CAVITY * i])
         net_exchange = 0.0
@@ -118,7 +119,8 @@ def run(model: Model, *, progress: bool = False) -> Results:
         summary["cavities"][cav.name] = {"peak pressure [Pa]": p, "peak pressure time [s]": tp,
                                          "final pressure [Pa]": final.pressure,
                                          "final temperature [K]": final.temperature,
-                                         "final mass [kg]": final.mixture.mass}
+                                         "final mass [kg]": final.mass if final.mixture is None
+                                         else final.mixture.mass}
     if model.geometry is not None:
         summary["blockage"] = blockage_summary(model, traj, history)
         if getattr(net, "body", None) is not None:

@@ -23,7 +23,7 @@ __all__ = ["Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "Specie
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
 LAWS = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",
         "volume_flux", "bulk_viscosity", "linear_resistance")
-INFLATOR_TYPES = ("mass_temperature", "tank_test")
+INFLATOR_TYPES = ("mass_temperature", "tank_test", "pressure_mass", "dual_pressure")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -64,11 +64,18 @@ class SpeciesSpec:
 class InflatorSpec:
     name: str = key("inflator name")
     type: str = key("inflator type", choices=INFLATOR_TYPES)
-    temperature: object = key("inflator gas temperature: a number or a CSV table (time [s], T [K])", "K")
+    temperature: object = key("mass_temperature, tank_test: inflator gas temperature, a number or a CSV table "
+                              "(time [s], T [K])", "K", default=None)
     mass_flow: object = key("mass_temperature: CSV table (time [s], mass flow [kg/s]) or a number", "kg/s",
                             default=None)
     tank_pressure: object = key("tank_test: CSV table (time [s], tank pressure [Pa])", "Pa", default=None)
-    tank_volume: float = key("tank_test: tank volume", "m^3", default=0.0, check="nonnegative")
+    tank_volume: float = key("tank_test, dual_pressure: tank volume", "m^3", default=0.0, check="nonnegative")
+    inflator_pressure: object = key("pressure_mass, dual_pressure: CSV (time [s], inflator pressure [Pa])", "Pa",
+                                    default=None)
+    orifice_area: float = key("pressure_mass, dual_pressure: inflator orifice area", "m^2", default=0.0,
+                              check="nonnegative")
+    discharge_coefficient: float = key("pressure_mass, dual_pressure: inflator orifice Cd", default=1.0,
+                                       check="positive")
     gas: dict = key("inflator gas composition {species = fraction}", default={"N2": 1.0})
     gas_by_mole: bool = key("fractions in `gas` are molar", default=False)
     start: float = key("activation time; tables are relative to it", "s", default=0.0, check="nonnegative")
@@ -96,6 +103,15 @@ class CavitySpec:
     inflator: tuple = key("inflators ([[cavity.inflator]] tables)", default=())
     wrapped_by: tuple = key("bodies whose surface the cavity mesh's nodes are placed on where they would "
                             "penetrate (the cushion wraps the impactor)", default=())
+    fluid: str = key("what fills the cavity", default="gas", choices=("gas", "hydraulic"))
+    density: float = key("hydraulic: density at the initial pressure and temperature", "kg/m^3", default=0.0,
+                         check="nonnegative")
+    bulk_modulus: float = key("hydraulic: bulk modulus K in p = p0 + K·ln(ρ/ρ_ref)", "Pa", default=0.0,
+                              check="nonnegative")
+    thermal_expansion: float = key("hydraulic: volumetric expansion α, ρ_ref(T) = ρ·exp(−α(T − T0))", "1/K",
+                                   default=0.0, check="nonnegative")
+    temperature_table: str = key("hydraulic: CSV (time [s], liquid temperature [K]); default: constant "
+                                 "`temperature`", default="")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -251,7 +267,8 @@ def scene_from_dict(data: dict, path) -> Scene:
         return convert
 
     inflator_nested = {"gas": composition, "temperature": table("temperature [K]"),
-                       "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]")}
+                       "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]"),
+                       "inflator_pressure": table("inflator pressure [Pa]")}
     cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested), "wrapped_by": names_list}
     scene = parse(Scene, data, path, "", nested={
         "time": lambda v, w: parse(TimeSpec, v, path, w),
@@ -292,6 +309,14 @@ def _check_cross_references(scene: Scene, path) -> None:
                                                       "heat_transfer_area > 0")
         for j, inf in enumerate(c.inflator):
             _check_inflator(inf, path, f"{where}.inflator[{j}]")
+        if c.fluid == "hydraulic":
+            for k in ("density", "bulk_modulus"):
+                if not getattr(c, k) > 0:
+                    raise SceneError(path, f"{where}.{k}", "required (> 0) for a hydraulic cavity")
+            if c.inflator or c.energy != "adiabatic" or c.wrapped_by:
+                raise SceneError(path, where, "a hydraulic cavity has no inflators, energy model or wrapping")
+            if c.temperature_table and not (scene.base / c.temperature_table).is_file():
+                raise SceneError(path, f"{where}.temperature_table", f"file {c.temperature_table!r} does not exist")
     _check_bodies(scene, path)
     for i, e in enumerate(scene.exchange):
         for side, value in (("from", e.from_), ("to", e.to)):
@@ -301,6 +326,7 @@ def _check_cross_references(scene: Scene, path) -> None:
         if e.from_ == e.to:
             raise SceneError(path, f"exchange[{i}].to", "an exchange joins two different sides")
         _check_exchange(scene, e, path, f"exchange[{i}]")
+        _check_hydraulic_exchange(scene, e, path, f"exchange[{i}]")
 
 
 LAW_KEYS = {"mass_rate_leakage": ("leakage_table",), "volume_rate_leakage": ("leakage_table",),
@@ -358,12 +384,34 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
         raise SceneError(path, f"{where}.pop_hold_time", "needs pop_pressure")
 
 
+PNEUMATIC_LAWS = ("orifice", "fabric_leakage")
+
+
+def _check_hydraulic_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
+    fluids = {c.name: c.fluid for c in scene.cavity}
+    sides = [fluids[e.from_], fluids.get(e.to, "gas")]
+    if "hydraulic" not in sides:
+        return
+    if e.to != "ambient" and len(set(sides)) > 1:
+        raise SceneError(path, f"{where}.to", "an exchange cannot join a gas cavity and a hydraulic cavity")
+    if e.law in PNEUMATIC_LAWS:
+        raise SceneError(path, f"{where}.law", f"{e.law!r} is for gases; a hydraulic cavity uses "
+                                               "volume_rate_leakage, mass_rate_leakage, bulk_viscosity, "
+                                               "linear_resistance or a flux")
+    if e.two_way:
+        raise SceneError(path, f"{where}.two_way", "ambient gas cannot flow into a hydraulic cavity")
+
+
 def _check_inflator(inf: InflatorSpec, path, where: str) -> None:
-    needed = {"mass_temperature": ("mass_flow",), "tank_test": ("tank_pressure", "tank_volume")}[inf.type]
+    needed = {"mass_temperature": ("mass_flow", "temperature"), "tank_test": ("tank_pressure", "tank_volume",
+                                                                            "temperature"),
+              "pressure_mass": ("inflator_pressure", "mass_flow", "orifice_area"),
+              "dual_pressure": ("inflator_pressure", "tank_pressure", "tank_volume", "orifice_area")}[inf.type]
     for k in needed:
         if not getattr(inf, k):
             raise SceneError(path, f"{where}.{k}", f"required for an inflator of type {inf.type!r}")
-    _require(inf.temperature, path, f"{where}.temperature", positive=True)
+    if inf.temperature is not None:
+        _require(inf.temperature, path, f"{where}.temperature", positive=True)
     if inf.mass_flow is not None:
         _require(inf.mass_flow, path, f"{where}.mass_flow", minimum=0.0)
 

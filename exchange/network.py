@@ -33,9 +33,11 @@ def _labelled(func, label):
     return func
 
 
-def gas_point(state: CavityState) -> GasPoint:
-    """The flow-law view of a cavity state."""
+def gas_point(state) -> GasPoint:
+    """The flow-law view of a cavity state (a liquid has no R, γ or enthalpy: NaN, NaN, 0)."""
     mix, T = state.mixture, state.temperature
+    if mix is None:  # hydraulic
+        return GasPoint(state.pressure, T, state.density, math.nan, math.nan, 0.0, (1.0,))
     if mix.mass <= 0.0:
         return GasPoint(state.pressure, T, 0.0, 1.0, 1.4, 0.0, state.masses)
     return GasPoint(state.pressure, T, state.density, mix.gas_constant, mix.gamma(T), state.specific_enthalpy,
@@ -114,6 +116,9 @@ class Network:
         """The gas state of every cavity at (t, y)."""
         out = []
         for i, (cav, k) in enumerate(zip(self.cavities, self.offsets)):
+            if getattr(cav, "kind", "gas") == "hydraulic":
+                out.append(cav.state(t, y[k:k + 1]))
+                continue
             s = CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i])
             self._T_guess[i] = s.temperature
             out.append(s)
@@ -158,8 +163,8 @@ class Network:
         t = self.input_time(t)
         states = self.states(t, y)
         dy = np.zeros_like(y)
-        ns = len(self.gas.species)
         for cav, k, s, c in zip(self.cavities, self.offsets, states, self._cavity_ledger()):
+            ns = len(cav.initial_masses)
             for inf in cav.inflators:
                 mdot = inf.mass_flow(t)
                 if mdot:
@@ -187,7 +192,8 @@ class Network:
         return dy
 
     def _transfer(self, dy, i, mdot, edot, carrier):
-        k, cav, ns = self.offsets[i], self.cavities[i], len(self.gas.species)
+        k, cav = self.offsets[i], self.cavities[i]
+        ns = len(cav.initial_masses)
         dy[k:k + ns] += mdot * np.asarray(carrier.mass_fractions)
         if not cav.isothermal:
             dy[k + ns] += edot
@@ -268,7 +274,7 @@ class Network:
         """A one-line account of the cavities' state, for error messages."""
         parts = []
         for cav, k in zip(self.cavities, self.offsets):
-            ns = len(self.gas.species)
+            ns = len(cav.initial_masses)
             m = y[k:k + ns]
             parts.append(f"{cav.name}: mass {m.sum():.6g} kg" + ("" if cav.isothermal else f", U {y[k + ns]:.6g} J"))
         return "; ".join(parts)
