@@ -16,6 +16,11 @@ def _run(args) -> int:
 
     results = run_scene(args.scene, progress=not args.quiet)
     paths = write_results(results, args.out)
+    if getattr(args, "render", False):
+        from .pictures import write_pictures
+
+        pics = write_pictures(results, args.out, times=args.times)
+        paths.update({f"{k} {i}": p for k, v in pics.items() for i, p in enumerate(v)})
     if not args.quiet:
         for name, cav in results.summary["cavities"].items():
             print(f"{name}: peak pressure {cav['peak pressure [Pa]']:.6g} Pa at {cav['peak pressure time [s]']:.6g} s")
@@ -47,6 +52,10 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("scene", type=Path, help="scene TOML file")
     r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     r.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    r.add_argument("--render", action="store_true",
+                   help="also draw each blocked leakage surface off screen: PNGs, a GIF and a VTK series (.pvd)")
+    r.add_argument("--times", type=float, nargs="+", default=None,
+                   help="times [s] of the PNGs (default: t = 0 and the time of the smallest leakage area)")
     r.set_defaults(func=_run)
     c = sub.add_parser("check", help="run the case library and compare with the reference histories")
     c.add_argument("cases", nargs="*", help="case names (default: all)")
