@@ -28,3 +28,22 @@ def test_cli_check_prints_table(capsys):
     assert "fill_constant" in out and "PASS" in out and "2 passed, 0 failed" in out
     assert main(["check", "fill_constnt"]) == 2
     assert "did you mean 'fill_constant'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_peak_pressure_independent_of_output_interval(name):
+    """Ten times finer output: peak pressures agree to 1e-8 (they are located on the dense output)."""
+    from dataclasses import replace
+
+    from cases.build import build_model
+    from cases.library import HERE
+    from cases.runner import run
+    from cases.scene import load_scene
+
+    scene = load_scene(HERE / CASES[name])
+    fine = replace(scene, time=replace(scene.time, output_interval=(scene.time.output_interval
+                                                                    or scene.time.end / 500) / 10))
+    a, b = (run(build_model(s)).summary["cavities"] for s in (scene, fine))
+    for cav in a:
+        pa, pb = a[cav]["peak pressure [Pa]"], b[cav]["peak pressure [Pa]"]
+        assert abs(pa / pb - 1.0) <= 1e-8, (cav, pa, pb)
