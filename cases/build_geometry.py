@@ -6,9 +6,9 @@ import numpy as np
 import blockage
 from cavity.volume import closed_mesh_volume, MeshError
 
-from .bodies import Body, DynamicMotion, PrescribedMotion, unit
+from .bodies import Body, DynamicMotion, PrescribedMotion, VertexTrajectory, unit
 from .errors import SceneError
-from .geometry import Wrapper, blocked_area_track, wrapped_volume
+from .geometry import Wrapper, blocked_area_track, rigid_batched_gaps, wrapped_volume
 from .scene_network import BodyState, GeometricArea
 from .tables_io import read_table
 
@@ -40,6 +40,23 @@ def _body_mesh(scene, spec, where):
     return m
 
 
+def _trajectory(scene, b, mesh, where) -> VertexTrajectory:
+    """Vertex positions from an .npz file with arrays ``times`` (k,) [s] and ``vertices`` (k, n, 3) [m]."""
+    try:
+        with np.load(scene.base / b.vertex_trajectory) as data:
+            times, verts = np.asarray(data["times"], float), np.asarray(data["vertices"], float)
+    except (OSError, KeyError, ValueError) as exc:
+        raise SceneError(scene.path, where, f"cannot read {b.vertex_trajectory!r} (an .npz with 'times' and "
+                                            f"'vertices'): {exc}") from None
+    n = len(mesh.vertices)
+    if verts.ndim != 3 or verts.shape[1:] != (n, 3) or times.shape != (verts.shape[0],):
+        raise SceneError(scene.path, where, f"expected times (k,) and vertices (k, {n}, 3) matching the mesh, got "
+                                            f"{times.shape} and {verts.shape}")
+    if not (np.all(np.isfinite(verts)) and np.all(np.isfinite(times)) and np.all(np.diff(times) > 0)):
+        raise SceneError(scene.path, where, "times must be strictly increasing and all values finite")
+    return VertexTrajectory(times, verts)
+
+
 def build_bodies(scene) -> dict:
     """{name: (Body, Blocker)} for every [[body]]."""
     out = {}
@@ -49,13 +66,18 @@ def build_bodies(scene) -> dict:
             axis = unit(b.axis, f"{where}.axis")
         except ValueError as exc:
             raise SceneError(scene.path, f"{where}.axis", str(exc)) from None
+        mesh = _body_mesh(scene, b, where)
         if b.mass:
             motion = DynamicMotion(b.mass, b.initial_velocity, b.gravity)
+        elif b.vertex_trajectory:
+            motion = _trajectory(scene, b, mesh, f"{where}.vertex_trajectory")
         else:
             table = (read_table(scene.base / b.displacement_table, scene.path, f"{where}.displacement_table",
                                 "displacement [m]") if b.displacement_table else None)
-            motion = PrescribedMotion(b.velocity, table)
-        mesh = _body_mesh(scene, b, where)
+            rot = (read_table(scene.base / b.rotation_table, scene.path, f"{where}.rotation_table", "angle [deg]")
+                   if b.rotation_table else None)
+            motion = PrescribedMotion(b.velocity, table, rot, unit(b.rotation_axis, f"{where}.rotation_axis"),
+                                      tuple(b.rotation_centre))
         out[b.name] = (Body(b.name, mesh, axis, motion), blockage.Blocker(mesh))
     return out
 
@@ -70,20 +92,20 @@ class Driver:
         self.state = BodyState()
         self.lo, self.hi = (0.0, t_end) if self.dynamic is None else (-0.05 * extent, extent)
 
-    def displacement(self, body, theta):
-        if self.dynamic is None:
-            return body.motion.displacement(theta)
-        return theta if body is self.dynamic else 0.0
-
-    def transforms(self, names):
-        return lambda theta: [self.bodies[n][0].transform(self.displacement(self.bodies[n][0], theta)) for n in names]
+    def placement(self, name, theta):
+        """(Blocker, 4x4) of body ``name`` at θ; a deforming body's Blocker is refitted (identity transform)."""
+        body, blocker = self.bodies[name]
+        if body.deforming:
+            return blocker.refit(body.vertices_at(theta)), np.eye(4)
+        if self.dynamic is not None and body is not self.dynamic:
+            return blocker, body.transform(0.0)
+        return blocker, body.transform(theta)
 
     def placed(self, names):
-        tf = self.transforms(names)
-        return lambda theta: list(zip([self.bodies[n][1] for n in names], tf(theta)))
+        return lambda theta: [self.placement(n, theta) for n in names]
 
     def wrapper(self, names) -> Wrapper:
-        return Wrapper([self.bodies[n] for n in names], self.transforms(names))
+        return Wrapper([self.bodies[n][0] for n in names], self.placed(names))
 
     @property
     def breakpoints(self):
@@ -107,7 +129,7 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver: Driver):
     e, where = scene.exchange[j], f"exchange[{j}]"
     if not (e.leakage_surface or e.leakage_box):
         return None, None
-    wrap = None
+    wrap, cav = None, None
     if e.leakage_surface:
         try:
             surface = blockage.LeakageSurface.read(scene.base / e.leakage_surface)
@@ -130,8 +152,15 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver: Driver):
         return wrap.place(x, theta) if wrap is not None else x
 
     eff = e.effective_area or None
-    track = blocked_area_track(surface, positions, driver.placed(e.blocked_by), e.contact_tolerance or 1e-300,
-                               driver.lo, driver.hi, effective_area=eff, permeability=e.permeability)
+    tol = e.contact_tolerance or 1e-300
+    batched = None
+    bodies = [driver.bodies[n] for n in e.blocked_by]
+    wrapped = set(cav.wrapped_by) if wrap is not None else set()
+    if not any(b.deforming for b, _ in bodies) and (not wrapped or (len(bodies) == 1 and wrapped == {bodies[0][0].name})):
+        batched = rigid_batched_gaps(base, bodies, lambda body, th: driver.placement(body.name, th)[1],
+                                     bool(wrapped), 4.0 * tol)
+    track = blocked_area_track(surface, positions, driver.placed(e.blocked_by), tol, driver.lo, driver.hi,
+                               effective_area=eff, permeability=e.permeability, batched=batched)
     return GeometricArea(track, driver.dynamic is None), (surface, positions)
 
 

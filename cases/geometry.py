@@ -35,23 +35,29 @@ MERGE_CROSSINGS = 1e-12
 class Wrapper:
     """Places the nodes of a surface that penetrate convex bodies on the bodies' surfaces.
 
-    ``bodies`` is a sequence of (Body, Blocker); ``transforms(θ)`` gives each body's 4x4 placement.
+    ``bodies`` is a sequence of Body; ``placed(θ)`` gives each body's (Blocker, 4x4 transform); a deforming
+    body's Blocker has been refitted to its vertices at θ (identity transform).
     """
 
     bodies: list
-    transforms: object  # callable θ -> list of 4x4
+    placed: object  # callable θ -> list of (Blocker, 4x4 or None)
 
     def place(self, points: np.ndarray, theta: float) -> np.ndarray:
         """The points after projection of those inside a body onto its surface [m]."""
         out = points.copy()
-        for (body, blocker), T in zip(self.bodies, self.transforms(theta)):
-            centre = body.mesh.bounding_sphere.primitive.center + T[:3, 3]
-            radius = body.mesh.bounding_sphere.primitive.radius
+        for body, (blocker, T) in zip(self.bodies, self.placed(theta)):
+            verts = body.vertices_at(theta)
+            centre = verts.mean(axis=0)
+            radius = float(np.sqrt(np.max(np.sum((verts - centre) ** 2, axis=1))))
             near = np.flatnonzero(np.linalg.norm(out - centre, axis=1) <= radius)
             if not near.size:
                 continue
             prox = blocker.distances(out[near], cutoff=2.0 * radius, transform=T)
-            normals = body.mesh.face_normals[prox.faces]  # translation only: normals unchanged
+            if body.deforming:
+                tri = verts[body.mesh.faces[prox.faces]]
+                normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+            else:
+                normals = body.mesh.face_normals[prox.faces] @ T[:3, :3].T
             inside = np.einsum("ij,ij->i", out[near] - prox.closest_points, normals) < 0.0
             out[near[inside]] = prox.closest_points[inside]
         return out
@@ -92,9 +98,9 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
     x0, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
     v0 = mesh_volume(x0, faces)
     node_faces = mesh.vertex_faces  # (n, k) padded with -1
+    placed = _rigid_placements(wrapper, grid, x0)
     vols = []
-    for th in grid:
-        x = wrapper.place(x0, th)
+    for th, x in zip(grid, placed if placed is not None else (wrapper.place(x0, th) for th in grid)):
         moved = np.flatnonzero(np.any(x != x0, axis=1))
         if not moved.size:
             vols.append(v0)
@@ -103,6 +109,35 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
         touched = touched[touched >= 0]
         vols.append(v0 + mesh_volume(x, faces[touched]) - mesh_volume(x0, faces[touched]))
     return WrappedVolume(CubicSpline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
+
+
+def _rigid_placements(wrapper: Wrapper, grid, x0):
+    """Node positions of the wrapped mesh at every θ of ``grid`` in one tree query (one rigid body), or None.
+
+    In the body's own frame the body is fixed and the nodes move: all (θ, node) pairs near the body are
+    projected together, instead of one query per θ.
+    """
+    if len(wrapper.bodies) != 1 or wrapper.bodies[0].deforming:
+        return None
+    body = wrapper.bodies[0]
+    blocker = wrapper.placed(grid[0])[0][0]
+    T = np.array([body.transform(th) for th in grid])
+    sphere = body.mesh.bounding_sphere.primitive
+    centres = np.einsum("gij,j->gi", T[:, :3, :3], sphere.center) + T[:, :3, 3]  # world, per θ
+    lo, hi = centres.min(axis=0) - sphere.radius, centres.max(axis=0) + sphere.radius
+    cand = np.flatnonzero(np.all((x0 >= lo) & (x0 <= hi), axis=1))  # nodes the swept body can reach
+    local = np.einsum("gji,gnj->gni", T[:, :3, :3], x0[cand][None] - T[:, None, :3, 3])  # (grid, cand, 3)
+    g_idx, c_idx = np.nonzero(np.sum((local - sphere.center) ** 2, axis=2) <= sphere.radius ** 2)
+    n_idx = cand[c_idx]
+    out = np.broadcast_to(x0, (len(grid),) + x0.shape).copy()
+    if g_idx.size:
+        pts = local[g_idx, c_idx]
+        prox = blocker.distances(pts, cutoff=2.0 * sphere.radius)
+        inside = np.einsum("ij,ij->i", pts - prox.closest_points, body.mesh.face_normals[prox.faces]) < 0
+        g_in, n_in, cp = g_idx[inside], n_idx[inside], prox.closest_points[inside]
+        R, t = T[g_in, :3, :3], T[g_in, :3, 3]
+        out[g_in, n_in] = np.einsum("kij,kj->ki", R, cp) + t
+    return out
 
 
 @dataclass
@@ -129,8 +164,74 @@ class BlockedArea:
         return below, above
 
 
+def batched_roots(batched, nodes, a, b, tolerance, cutoff, iterations=200):
+    """Roots of gap_i(θ) = tolerance for many (node, bracket) pairs at once (Illinois regula falsi).
+
+    Each iteration evaluates every unresolved pair in one batched query; a pair stops when its bracket is
+    within a few ulp. Returns the θ of each pair where the node's status changes.
+    """
+    a, b = a.astype(float).copy(), b.astype(float).copy()
+    fa = np.minimum(batched(a, nodes), cutoff) - tolerance
+    fb = np.minimum(batched(b, nodes), cutoff) - tolerance
+    side = np.zeros(len(a))
+    for _ in range(iterations):
+        open_ = np.abs(b - a) > 4.0 * np.finfo(float).eps * np.maximum(np.abs(a), np.abs(b)) + 1e-300
+        if not open_.any():
+            break
+        idx = np.flatnonzero(open_)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = (a[idx] * fb[idx] - b[idx] * fa[idx]) / (fb[idx] - fa[idx])
+        bad = ~np.isfinite(c) | (c <= np.minimum(a[idx], b[idx])) | (c >= np.maximum(a[idx], b[idx]))
+        c[bad] = 0.5 * (a[idx][bad] + b[idx][bad])
+        fc = np.minimum(batched(c, nodes[idx]), cutoff) - tolerance
+        left = np.sign(fc) == np.sign(fa[idx])  # root in [c, b]
+        i_l, i_r = idx[left], idx[~left]
+        a[i_l], fa[i_l] = c[left], fc[left]
+        fb[i_l] = np.where(side[i_l] == 1, fb[i_l] / 2, fb[i_l])  # Illinois: halve the stale end
+        side[i_l] = 1
+        b[i_r], fb[i_r] = c[~left], fc[~left]
+        fa[i_r] = np.where(side[i_r] == -1, fa[i_r] / 2, fa[i_r])
+        side[i_r] = -1
+    return 0.5 * (a + b)
+
+
+def rigid_batched_gaps(points, bodies, placements, wrapping, cutoff):
+    """gap(θ_i) of node i for many (θ_i, node_i) pairs at once, for rigid bodies [m].
+
+    Each query point is moved into the body's own frame (T(θ_i)⁻¹ applied per point), so one tree query
+    serves all pairs. With ``wrapping`` the surface wraps the body: a node inside it lies on its surface (gap 0).
+    """
+    def inside(body, blocker, local):
+        """Which local points lie inside the (convex) body: sign of the offset along the closest face normal."""
+        sphere = body.mesh.bounding_sphere.primitive
+        cand = np.flatnonzero(np.linalg.norm(local - sphere.center, axis=1) <= sphere.radius)
+        out = np.zeros(len(local), dtype=bool)
+        if cand.size:
+            prox = blocker.distances(local[cand], cutoff=2.0 * sphere.radius)
+            normals = body.mesh.face_normals[prox.faces]
+            out[cand] = np.einsum("ij,ij->i", local[cand] - prox.closest_points, normals) < 0
+        return out
+
+    def gaps(thetas, nodes):
+        x = points[nodes]
+        g = np.full(len(x), np.inf)
+        unique, which = np.unique(thetas, return_inverse=True)
+        for body, blocker in bodies:
+            T = np.array([placements(body, th) for th in unique])[which.ravel()]
+            local = np.einsum("nji,nj->ni", T[:, :3, :3], x - T[:, :3, 3])
+            d = blocker.distances(local, cutoff=cutoff).distances
+            if wrapping:
+                far = np.flatnonzero(~np.isfinite(d))
+                d[far[inside(body, blocker, local[far])]] = 0.0
+                near = np.flatnonzero(np.isfinite(d) & (d > 0))
+                d[near[inside(body, blocker, local[near])]] = 0.0
+            g = np.minimum(g, d)
+        return g
+    return gaps
+
+
 def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, effective_area=None,
-                       permeability=0.0) -> BlockedArea:
+                       permeability=0.0, batched=None) -> BlockedArea:
     """Find the gap crossings of every leakage node on θ ∈ [lo, hi] and the leakage area between them.
 
     Parameters
@@ -141,6 +242,8 @@ def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, 
         Coordinates [m] of the leakage nodes ``nodes`` (all when None) at θ (moved, e.g. wrapped around a body).
     blockers : callable θ -> list of (Blocker, 4x4)
         The blocking bodies placed at θ.
+    batched : callable (θ (k,), nodes (k,)) -> gaps (k,), optional
+        The same gaps evaluated for many pairs in one query (rigid bodies): used for the grid and the roots.
     tolerance : float
         Contact tolerance [m].
     """
@@ -154,13 +257,22 @@ def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, 
         return g
 
     grid = np.linspace(lo, hi, GRID_POINTS)
-    inside = np.array([gaps(th) <= tolerance for th in grid])  # (grid, nodes)
-    roots = []
-    for i, node in zip(*np.nonzero(inside[1:] != inside[:-1])):
-        def excess(th, node=node):  # gap − tolerance, finite beyond the cutoff so Brent's method can use it
-            return min(gaps(th, [node])[0], cutoff) - tolerance
+    if batched is not None:
+        n = len(surface.vertices)
+        inside = batched(np.repeat(grid, n), np.tile(np.arange(n), len(grid))).reshape(len(grid), n) <= tolerance
+    else:
+        inside = np.array([gaps(th) <= tolerance for th in grid])  # (grid, nodes)
+    pairs = np.argwhere(inside[1:] != inside[:-1])
+    if batched is not None and len(pairs):
+        roots = list(batched_roots(batched, pairs[:, 1], grid[pairs[:, 0]], grid[pairs[:, 0] + 1], tolerance,
+                                   cutoff))
+    else:
+        roots = []
+        for i, node in pairs:
+            def excess(th, node=node):  # gap − tolerance, finite beyond the cutoff so Brent's method can use it
+                return min(gaps(th, [node])[0], cutoff) - tolerance
 
-        roots.append(brentq(excess, grid[i], grid[i + 1], xtol=1e-15, rtol=8.9e-16))
+            roots.append(brentq(excess, grid[i], grid[i + 1], xtol=1e-15, rtol=8.9e-16))
     crossings = np.sort(roots)
     if len(crossings):  # nodes that cross together (a column of a grid) give roots a few ulp apart: one event
         keep = np.diff(crossings, prepend=-np.inf) > MERGE_CROSSINGS * (hi - lo)

@@ -30,8 +30,7 @@ def frame_at(results, j: int, t: float):
     res = blockage.evaluate(leak, placed, tol, cutoff=4 * tol, permeability=spec.permeability)
     areas = np.asarray(surface.face_areas)
     fraction = np.divide(res.face_blocked_area, areas, out=np.zeros_like(areas), where=areas > 0)
-    bodies = tuple((geo["bodies"][n][0].mesh.vertices + T[:3, 3], geo["bodies"][n][0].mesh.faces)
-                   for n, T in zip(spec.blocked_by, geo["driver"].transforms(spec.blocked_by)(th)))
+    bodies = tuple((geo["bodies"][n][0].vertices_at(th), geo["bodies"][n][0].mesh.faces) for n in spec.blocked_by)
     net.restore(results.trajectory.mode_at(t))
     p = net.states(t, results.trajectory(t))[net.exchanges[j].upstream].pressure
     return Frame(t, p, leak.vertices, leak.faces, np.clip(fraction, 0.0, 1.0), res.active_nodes,

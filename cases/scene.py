@@ -174,6 +174,12 @@ class BodySpec:
     axis: tuple = key("direction of motion (normalised)", default=(0.0, 0.0, -1.0))
     velocity: float = key("prescribed constant speed along `axis`", "m/s", default=0.0, check="finite")
     displacement_table: str = key("prescribed CSV (time [s], displacement along axis [m])", default="")
+    rotation_table: str = key("prescribed CSV (time [s], angle [deg]) about rotation_axis through rotation_centre",
+                              default="")
+    rotation_axis: tuple = key("axis of rotation_table", default=(0.0, 0.0, 1.0))
+    rotation_centre: tuple = key("a point on the rotation axis", "m", default=(0.0, 0.0, 0.0))
+    vertex_trajectory: str = key("prescribed .npz with 'times' (k,) [s] and 'vertices' (k, n, 3) [m] for the "
+                                 "mesh's n vertices (e.g. from a finite-element run)", default="")
     mass: float = key("dynamic body: mass (0: prescribed motion)", "kg", default=0.0, check="nonnegative")
     initial_velocity: float = key("dynamic body: initial speed along `axis`", "m/s", default=0.0, check="finite")
     gravity: float = key("dynamic body: acceleration along `axis`", "m/s^2", default=0.0, check="finite")
@@ -276,7 +282,8 @@ def scene_from_dict(data: dict, path) -> Scene:
         "ambient": lambda v, w: parse(AmbientSpec, v, path, w, nested={"gas": composition}),
         "species": many(SpeciesSpec, {"cp": lambda v, w: tuple(v)}),
         "cavity": many(CavitySpec, cavity_nested),
-        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3)}),
+        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3),
+                                "rotation_axis": vector(3), "rotation_centre": vector(3)}),
         "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,"discharge_coefficient": number_or_table("discharge coefficient [-]"),
                                         "flux_amplitude": table("flux amplitude [-]"),
                                         "amplitude": table("area amplitude [-]")}),
@@ -343,10 +350,19 @@ def _check_bodies(scene: Scene, path) -> None:
             raise SceneError(path, f"body[{i}].mesh", f"file {b.mesh!r} does not exist")
         if b.displacement_table:
             read_table(scene.base / b.displacement_table, path, f"body[{i}].displacement_table", "displacement [m]")
-        if b.mass and (b.velocity or b.displacement_table):
-            raise SceneError(path, f"body[{i}].mass", "a dynamic body (mass > 0) has no prescribed velocity or table")
+        if b.mass and (b.velocity or b.displacement_table or b.rotation_table or b.vertex_trajectory):
+            raise SceneError(path, f"body[{i}].mass", "a dynamic body (mass > 0) has no prescribed motion")
+        if b.vertex_trajectory and (b.velocity or b.displacement_table or b.rotation_table):
+            raise SceneError(path, f"body[{i}].vertex_trajectory", "replaces velocity, displacement and rotation")
+        for k in ("rotation_table", "vertex_trajectory"):
+            if getattr(b, k) and not (scene.base / getattr(b, k)).is_file():
+                raise SceneError(path, f"body[{i}].{k}", f"file {getattr(b, k)!r} does not exist")
     if sum(1 for b in scene.body if b.mass) > 1:
         raise SceneError(path, "body", "at most one dynamic body (mass > 0) per scene")
+    if any(b.mass for b in scene.body):
+        for i, b in enumerate(scene.body):
+            if not b.mass and (b.velocity or b.displacement_table or b.rotation_table or b.vertex_trajectory):
+                raise SceneError(path, f"body[{i}]", "with a dynamic body in the scene, the other bodies stay fixed")
     refs = [(f"cavity[{i}].wrapped_by", c.wrapped_by) for i, c in enumerate(scene.cavity)]
     refs += [(f"exchange[{i}].blocked_by", e.blocked_by) for i, e in enumerate(scene.exchange)]
     for where, used in refs:

@@ -70,3 +70,45 @@ def test_peak_and_results_do_not_depend_on_output_interval(tmp_path):
     pa, pb = (x.summary["cavities"]["tank"]["final pressure [Pa]"] for x in (a, b))
     assert abs(pa / pb - 1) <= 1e-12
     assert a.summary["solver"]["steps"] == b.summary["solver"]["steps"]
+
+
+def test_hinged_flap_rotation_table_closes_columns_at_the_closed_form_times(tmp_path):
+    """A flap hinged at x = −5 mm rotates from 20° down to 0°: column x touches when (x + 5 mm)·sin φ = tol."""
+    write_vent(tmp_path / "vent.obj")
+    flap = trimesh.creation.box(extents=(0.04, 0.06, 0.002))
+    flap.apply_translation((0.015, 0.01, 0.001))  # lower face in z = 0, hinge edge at x = −0.005
+    flap.apply_transform(trimesh.transformations.rotation_matrix(math.radians(-20.0), (0, 1, 0), (-0.005, 0, 0)))
+    flap.export(tmp_path / "flap.ply")
+    (tmp_path / "angle.csv").write_text("t,deg\n0,0\n0.03,20\n0.04,20\n")  # rotates back by +20° about y
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": 0.04, "output_interval": 0.001}
+    data["body"] = [{"name": "flap", "mesh": "flap.ply", "rotation_table": "angle.csv",
+                     "rotation_axis": [0, 1, 0], "rotation_centre": [-0.005, 0, 0]}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["flap"],
+                         "contact_tolerance": TOL}]
+    r = run(build_model(scene_from_dict(data, tmp_path / "s.toml")))
+    track = r.model.network.areas[0].track
+    phi = [math.degrees(math.asin(TOL / (x + 0.005))) for x in (0.0, 0.01, 0.02)]  # angle at touch [deg]
+    expected = [0.03 * (1 - p / 20.0) for p in phi]  # 20° − 20°·t/0.03 = φ
+    # the hinge column (x = 0) is within 1 mm of the hinge: it is blocked when sin φ <= 0.2 (φ ≈ 11.5°)
+    assert np.max(np.abs(track.crossings - expected)) <= 1e-9
+    assert np.allclose(track.areas, [4e-4, 3e-4, 1e-4, 0.0], rtol=1e-12, atol=1e-18)
+
+
+def test_vertex_trajectory_reproduces_the_rigid_plate(tmp_path):
+    """The plate's motion given as vertex frames (an FE-like export) gives the same onset times."""
+    rigid = run(build_model(plate_scene(tmp_path)))
+    plate = trimesh.load(tmp_path / "plate.ply")
+    times = np.array([0.0, S_STOP / V, 1.0])
+    frames = np.array([plate.vertices - [0, 0, s] for s in (0.0, S_STOP, S_STOP)])
+    np.savez(tmp_path / "plate_traj.npz", times=times, vertices=frames)
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": 0.04, "output_interval": 0.001}
+    data["body"] = [{"name": "plate", "mesh": "plate.ply", "vertex_trajectory": "plate_traj.npz"}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["plate"],
+                         "contact_tolerance": TOL}]
+    r = run(build_model(scene_from_dict(data, tmp_path / "s.toml")))
+    a, b = rigid.model.network.areas[0].track, r.model.network.areas[0].track
+    assert np.max(np.abs(a.crossings - b.crossings)) <= 1e-9 and np.array_equal(a.areas, b.areas)
+    assert abs(r.summary["cavities"]["tank"]["final pressure [Pa]"]
+               / rigid.summary["cavities"]["tank"]["final pressure [Pa]"] - 1) < 1e-9
