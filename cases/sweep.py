@@ -2,13 +2,14 @@
 
 A sweep runs many variants of one scene, each a set of values written at dotted keys of the scene's TOML data
 (:mod:`cases.sweep_design`), on Dask's distributed scheduler: a ``LocalCluster`` of single-threaded worker
-processes on this machine, or an existing scheduler (``scheduler="tcp://host:8786"``). Each variant is one task,
-:func:`run_variant` (scene data in, a record out): it validates the data with ``scene_from_dict`` against the
-original scene's path, runs it and writes ``DIR/variants/<id>/`` (``history.csv``, ``summary.json``, and
-``row.json`` last, the variant's record and its "finished" mark). A bad value fails its variant only, with the
-scene's one-line error. ``DIR/results.csv`` and ``DIR/results.parquet`` (one row per variant: id, status, inputs,
-summary figures, wall time, error) are rewritten atomically as records arrive, at most once a second, and at
-the end; ``DIR/sweep.png`` plots the main responses against each varied key.
+processes on this machine, or an existing scheduler (``scheduler="tcp://host:8786"``). Each variant is run by
+:func:`run_variant` (scene data in, a record out; a task runs one, or a few when they are many and cheap): it
+validates the data with ``scene_from_dict`` against the original scene's path, runs it and writes
+``DIR/variants/<id>/`` (``history.csv``, ``summary.json``, and ``row.json`` last, the variant's record and its
+"finished" mark). A bad value fails its variant only, with the scene's one-line error. ``DIR/results.csv`` and
+``DIR/results.parquet`` (one row per variant: id, status, inputs, summary figures, wall time, error) are
+rewritten atomically as records arrive, at most once a second, and at the end; ``DIR/sweep.png`` plots the main
+responses against each varied key (:mod:`cases.sweep_plot`).
 
 Running the same sweep again skips the variants that have a ``row.json`` (resumable); ``retry_failed`` re-runs
 failed ones. A variant whose worker died (status ``lost``) has no ``row.json`` and is run again.
@@ -22,7 +23,6 @@ import json
 import logging
 import os
 import signal
-import sys
 import time
 import traceback
 import uuid
@@ -31,8 +31,8 @@ from pathlib import Path
 
 from .errors import SceneError
 
-__all__ = ["sweep", "SweepResult", "Plan", "plan_sweep", "run_variant", "figures", "dask_client",
-           "add_sweep_parser", "RESULTS_CSV", "RESULTS_PARQUET", "PLOT", "MANIFEST"]
+__all__ = ["sweep", "SweepResult", "Plan", "plan_sweep", "run_variant", "run_variants", "batch_size", "figures",
+           "dask_client", "add_sweep_parser", "RESULTS_CSV", "RESULTS_PARQUET", "PLOT", "MANIFEST"]
 
 RESULTS_CSV, RESULTS_PARQUET, PLOT, MANIFEST = "results.csv", "results.parquet", "sweep.png", "sweep.json"
 ROW = "row.json"  # in each variant's folder, written last: the variant is finished
@@ -136,6 +136,12 @@ def run_variant(data: dict, path, out_dir, inputs: dict | None = None) -> dict:
     return record
 
 
+def run_variants(batch: list, path) -> list:
+    """Several variants in one task, ``batch`` = [(data, out_dir, inputs), ...]: for cheap variants, fewer tasks
+    to schedule. Each variant is written (and recorded) as it finishes, as with :func:`run_variant`."""
+    return [run_variant(data, path, out_dir, inputs) for data, out_dir, inputs in batch]
+
+
 # ------------------------------------------------------------------------------------------ sweep folder
 
 def _check_manifest(out: Path, plan: Plan) -> None:
@@ -154,37 +160,6 @@ def _check_manifest(out: Path, plan: Plan) -> None:
 
 
 # ------------------------------------------------------------------------------------------ running on Dask
-
-class _Progress:
-    """``sweep: 37/200 done, 1 failed, 12 finished before, 3.2 s`` on stderr (redrawn in place on a terminal)."""
-
-    def __init__(self, total: int, before: int, enabled: bool = True, stream=None):
-        self.total, self.before, self.enabled = total, before, enabled
-        self.stream = stream or sys.stderr
-        self.done = self.failed = 0
-        self.start = self.shown = time.monotonic()
-        self.tty = self.stream.isatty()
-
-    def line(self) -> str:
-        bad = f", {self.failed} failed" if self.failed else ""
-        before = f", {self.before} finished before" if self.before else ""
-        return (f"sweep: {self.before + self.done}/{self.total} done{bad}{before}, "
-                f"{time.monotonic() - self.start:.1f} s")
-
-    def update(self, record: dict) -> None:
-        self.done += 1
-        self.failed += record["status"] != "ok"
-        now = time.monotonic()
-        if self.enabled and (self.tty or now - self.shown >= 10.0):
-            self.stream.write(("\r" if self.tty else "") + self.line() + ("" if self.tty else "\n"))
-            self.stream.flush()
-            self.shown = now
-
-    def close(self) -> None:
-        if self.enabled and (self.done or self.before):
-            self.stream.write(("\r" if self.tty else "") + self.line() + "\n")
-            self.stream.flush()
-
 
 @contextlib.contextmanager
 def dask_client(scheduler=None, workers=None, n_tasks=1):
@@ -227,16 +202,34 @@ def _quiet(name: str):
         logger.setLevel(level)
 
 
-def _outcome(result, vid: str, inputs: dict) -> dict:
-    """A task's record, or a ``lost`` record if instead of one it gave an exception (its worker died, it was
-    cancelled): not the variant's fault, so it gets no ``row.json`` and runs again next time."""
-    if isinstance(result, dict):
+def _outcomes(result, batch: list, out: Path) -> list:
+    """The records of a finished task (``batch`` = [(id, inputs), ...]), or, if it gave an exception instead
+    (its worker died, it was cancelled), each variant's ``row.json`` if it got that far, else a ``lost`` record:
+    not the variant's fault, so it has no ``row.json`` and runs again next time."""
+    if isinstance(result, list):
         return result
     try:
         message = f"{type(result).__name__}: {result}".splitlines()[0]
     except Exception:  # an exception whose str() fails
         message = type(result).__name__
-    return {"id": vid, "status": "lost", "inputs": inputs, "figures": {}, "wall_time [s]": None, "error": message}
+    records = []
+    for vid, inputs in batch:
+        try:
+            records.append(json.loads((out / "variants" / vid / ROW).read_text()))
+        except (OSError, ValueError):
+            records.append({"id": vid, "status": "lost", "inputs": inputs, "figures": {}, "wall_time [s]": None,
+                            "error": message})
+    return records
+
+
+def batch_size(n_todo: int, n_threads: int) -> int:
+    """Variants per task when not given: 1, up to 8 when there are many variants per worker thread (at least
+    20 tasks per thread remain, so the last tasks leave little idle time).
+
+    >>> batch_size(12, 2), batch_size(200, 2), batch_size(10_000, 2)
+    (1, 5, 8)
+    """
+    return max(1, min(8, n_todo // (20 * max(1, n_threads))))
 
 
 @contextlib.contextmanager
@@ -259,34 +252,37 @@ def _deferred_interrupt():
         signal.signal(signal.SIGINT, previous)
 
 
-def _execute(client, plan: Plan, todo: list, out: Path, table, progress: _Progress, on_row) -> None:
-    """Submit one task per variant; record each as it completes (into ``table``, a ResultsTable); on any
-    interruption cancel the rest."""
+def _execute(client, plan: Plan, todo: list, out: Path, table, progress, on_row, batch=None) -> None:
+    """Submit the variants as tasks of ``batch`` variants (default :func:`batch_size`); record each as its task
+    completes (into ``table``, a ResultsTable); on any interruption cancel the rest."""
     from dask.distributed import as_completed
 
     from .sweep_plot import flat
 
+    k = batch or batch_size(len(todo), sum(client.nthreads().values()))
+    chunks = [todo[i:i + k] for i in range(0, len(todo), k)]
     tag = uuid.uuid4().hex[:8]
-    futures = client.map(run_variant, [plan.scene_data(inputs) for _, inputs in todo], [str(plan.scene)] * len(todo),
-                         [str(out / "variants" / vid) for vid, _ in todo], [inputs for _, inputs in todo],
-                         key=[f"ventsim-variant-{vid}-{tag}" for vid, _ in todo])
-    pending = dict(zip(futures, todo))
+    futures = client.map(run_variants, [[(plan.scene_data(inputs), str(out / "variants" / vid), inputs)
+                                         for vid, inputs in chunk] for chunk in chunks],
+                         path=str(plan.scene), key=[f"ventsim-variants-{chunk[0][0]}-{tag}" for chunk in chunks])
+    pending = dict(zip(futures, chunks))
     done = as_completed(futures, with_results=True)  # results are fetched in the background, as they finish
     try:
         with _deferred_interrupt() as interrupted:
             while pending:
                 if interrupted:
                     raise KeyboardInterrupt
-                batch = done.next_batch(block=False)
-                if not batch:
+                finished = done.next_batch(block=False)
+                if not finished:
                     time.sleep(0.02)
-                for fut, result in batch:
-                    record = _outcome(result, *pending.pop(fut))
+                for fut, result in finished:
+                    records = _outcomes(result, pending.pop(fut), out)
                     fut.release()
-                    table.add(record)
-                    progress.update(record)
-                    if on_row is not None:
-                        on_row(flat(record))
+                    for record in records:
+                        table.add(record)
+                        progress.update(record)
+                        if on_row is not None:
+                            on_row(flat(record))
     finally:
         if pending:
             client.cancel(list(pending))
@@ -325,7 +321,7 @@ class SweepResult:
 
 
 def sweep(scene, vary=None, *, out, design: str = "full", samples=None, seed: int = 0, variants=None,
-          scheduler=None, workers=None, client=None, retry_failed: bool = False, plot: bool = True,
+          scheduler=None, workers=None, client=None, batch=None, retry_failed: bool = False, plot: bool = True,
           progress: bool = True, on_row=None) -> SweepResult:
     """Run the variants of ``scene`` on Dask into folder ``out``; skip those finished there before.
 
@@ -333,9 +329,10 @@ def sweep(scene, vary=None, *, out, design: str = "full", samples=None, seed: in
     by ``design`` (``"full"`` factorial, ``"list"``: i-th values together, ``"lhs"``: a Latin hypercube of
     ``samples`` points, ``seed``); or ``variants``: a CSV file (a header of keys) or a list of {key: value}.
     ``scheduler``: an address to connect to; otherwise a LocalCluster of ``workers`` processes. ``client``: an
-    existing ``dask.distributed.Client`` to use (left open). ``on_row(row)`` is called with each new flat row.
+    existing ``dask.distributed.Client`` to use (left open). ``batch``: variants per task (default: see
+    :func:`batch_size`). ``on_row(row)`` is called with each new flat row.
     """
-    from .sweep_plot import ResultsTable, flat, load_records, plot_sweep
+    from .sweep_plot import Progress, ResultsTable, flat, load_records, plot_sweep
 
     plan = plan_sweep(scene, vary, design=design, samples=samples, seed=seed, variants=variants)
     out = Path(out).resolve()
@@ -344,12 +341,12 @@ def sweep(scene, vary=None, *, out, design: str = "full", samples=None, seed: in
     todo = [(vid, inputs) for vid, inputs in plan.variants
             if vid not in before or (retry_failed and before[vid]["status"] != "ok")]
     table = ResultsTable(out, plan.keys, [vid for vid, _ in plan.variants], before)
-    bar = _Progress(len(plan.variants), len(plan.variants) - len(todo), enabled=progress)
+    bar = Progress(len(plan.variants), len(plan.variants) - len(todo), enabled=progress)
     try:
         if todo:
             with contextlib.nullcontext(client) if client is not None else \
                     dask_client(scheduler, workers, len(todo)) as c:
-                _execute(c, plan, todo, out, table, bar, on_row)
+                _execute(c, plan, todo, out, table, bar, on_row, batch)
     finally:
         bar.close()
     paths = table.flush()
@@ -382,6 +379,8 @@ def add_sweep_parser(sub) -> argparse.ArgumentParser:
                                                           "LocalCluster")
     s.add_argument("--workers", type=int, help="LocalCluster worker processes (default: one per core); with "
                                                "--scheduler: wait for this many workers")
+    s.add_argument("--batch", type=int, metavar="N", help="variants per Dask task (default: 1, more when there "
+                                                          "are many cheap variants per worker)")
     s.add_argument("--retry-failed", action="store_true", help="run failed variants again")
     s.add_argument("--no-plot", action="store_true", help="do not write sweep.png")
     s.add_argument("--quiet", action="store_true", help="print nothing but errors")
@@ -392,11 +391,12 @@ def add_sweep_parser(sub) -> argparse.ArgumentParser:
 def _cli(args) -> int:
     from .sweep_design import SweepError, parse_vary
 
-    if args.workers is not None and args.workers < 1:
-        raise SweepError(f"--workers {args.workers}: expected a number >= 1")
+    for name in ("workers", "batch"):
+        if getattr(args, name) is not None and getattr(args, name) < 1:
+            raise SweepError(f"--{name} {getattr(args, name)}: expected a number >= 1")
     res = sweep(args.scene, parse_vary(args.vary), out=args.out, design=args.design, samples=args.samples,
                 seed=args.seed, variants=args.variants, scheduler=args.scheduler, workers=args.workers,
-                retry_failed=args.retry_failed, plot=not args.no_plot, progress=not args.quiet)
+                batch=args.batch, retry_failed=args.retry_failed, plot=not args.no_plot, progress=not args.quiet)
     n = res.counts
     if not args.quiet:
         lost = f", {n['lost']} lost (run again to retry)" if n["lost"] else ""

@@ -1,5 +1,6 @@
 """The sweep's outputs: its records (``variants/<id>/row.json``), ``results.csv`` and ``results.parquet`` (one
-row per variant), and ``sweep.png``, each main response (peak pressure, min leakage area) against each varied key.
+row per variant), the progress line, and ``sweep.png``, each main response (peak pressure, min leakage area)
+against each varied key.
 
 In the picture, one panel per (response, key): every finished variant as a dot, and when a key takes few distinct
 values the mean response at each value as a line (the key's main effect over the others). Failed variants are
@@ -10,6 +11,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import sys
 import time
 from pathlib import Path
 
@@ -18,7 +20,8 @@ import numpy as np
 from .output import atomic_path
 from .sweep import RESULTS_CSV, RESULTS_PARQUET, ROW
 
-__all__ = ["flat", "arrow_column", "write_table", "ResultsTable", "load_records", "responses", "plot_sweep"]
+__all__ = ["flat", "arrow_column", "write_table", "ResultsTable", "load_records", "Progress", "responses",
+           "plot_sweep"]
 
 
 # ------------------------------------------------------------------------------------------ records and tables
@@ -85,10 +88,14 @@ class ResultsTable:
             self.flush()
 
     def flush(self) -> dict:
+        """Rewrite the result files if anything changed; a large table is rewritten less often (at most 5% of
+        the time is spent writing it)."""
         paths = {"results": self.out / RESULTS_CSV, "parquet": self.out / RESULTS_PARQUET}
         if self.dirty or not all(p.is_file() for p in paths.values()):
+            start = time.monotonic()
             paths = write_table(self.out, self.ordered(), self.keys)
             self.last, self.dirty = time.monotonic(), False
+            self.every = max(self.every, 20.0 * (self.last - start))
         return paths
 
 
@@ -103,6 +110,39 @@ def load_records(out: Path) -> dict:
         if isinstance(r, dict) and r.get("status") in ("ok", "failed") and r.get("id") == p.parent.name:
             records[r["id"]] = r
     return records
+
+
+# ------------------------------------------------------------------------------------------ progress
+
+class Progress:
+    """``sweep: 37/200 done, 1 failed, 12 finished before, 3.2 s`` on stderr (redrawn in place on a terminal)."""
+
+    def __init__(self, total: int, before: int, enabled: bool = True, stream=None):
+        self.total, self.before, self.enabled = total, before, enabled
+        self.stream = stream or sys.stderr
+        self.done = self.failed = 0
+        self.start = self.shown = time.monotonic()
+        self.tty = self.stream.isatty()
+
+    def line(self) -> str:
+        bad = f", {self.failed} failed" if self.failed else ""
+        before = f", {self.before} finished before" if self.before else ""
+        return (f"sweep: {self.before + self.done}/{self.total} done{bad}{before}, "
+                f"{time.monotonic() - self.start:.1f} s")
+
+    def update(self, record: dict) -> None:
+        self.done += 1
+        self.failed += record["status"] != "ok"
+        now = time.monotonic()
+        if self.enabled and (self.tty or now - self.shown >= 10.0):
+            self.stream.write(("\r" if self.tty else "") + self.line() + ("" if self.tty else "\n"))
+            self.stream.flush()
+            self.shown = now
+
+    def close(self) -> None:
+        if self.enabled and (self.done or self.before):
+            self.stream.write(("\r" if self.tty else "") + self.line() + "\n")
+            self.stream.flush()
 
 
 # ------------------------------------------------------------------------------------------ the picture
