@@ -28,6 +28,9 @@ LEDGER_PER_EXCHANGE = 2  # mass, energy
 LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
 
 
+_LIQUID = np.ones(1)
+
+
 def _labelled(func, label):
     func.label = label
     return func
@@ -37,7 +40,7 @@ def gas_point(state) -> GasPoint:
     """The flow-law view of a cavity state (a liquid has no R, γ or enthalpy: NaN, NaN, 0)."""
     mix, T = state.mixture, state.temperature
     if mix is None:  # hydraulic
-        return GasPoint(state.pressure, T, state.density, math.nan, math.nan, 0.0, (1.0,))
+        return GasPoint(state.pressure, T, state.density, math.nan, math.nan, 0.0, _LIQUID)
     if mix.mass <= 0.0:
         return GasPoint(state.pressure, T, 0.0, 1.0, 1.4, 0.0, state.masses)
     return GasPoint(state.pressure, T, state.density, mix.gas_constant, mix.gamma(T), state.specific_enthalpy,
@@ -65,6 +68,8 @@ class Network:
     _T_guess: list = field(init=False)
     _ambient_point: GasPoint = field(init=False)
     _segment_end: float = field(init=False, default=math.inf)
+    _ledger: list = field(init=False)
+    _inflow_fractions: list = field(init=False)
     popped: list = field(init=False)  # per exchange: the pop condition has been met (it stays open)
     holding_since: list = field(init=False)  # per exchange: when Δp last rose above the pop pressure, or None
     area_at_activation: list = field(init=False)
@@ -76,6 +81,10 @@ class Network:
             k += cav.n_unknowns
         self.ledger_offset = k
         self._ambient_point = self.ambient.point()
+        self._ledger = [self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges) + LEDGER_PER_CAVITY * i
+                        for i in range(len(self.cavities))]
+        self._inflow_fractions = [[np.asarray(inf.mass_fractions, dtype=float) for inf in c.inflators]
+                                  for c in self.cavities]
         self.reset()
 
     def reset(self) -> None:
@@ -163,13 +172,14 @@ class Network:
         t = self.input_time(t)
         states = self.states(t, y)
         dy = np.zeros_like(y)
-        for cav, k, s, c in zip(self.cavities, self.offsets, states, self._cavity_ledger()):
+        for cav, k, s, c, fractions in zip(self.cavities, self.offsets, states, self._ledger,
+                                           self._inflow_fractions):
             ns = len(cav.initial_masses)
-            for inf in cav.inflators:
+            for inf, y_in in zip(cav.inflators, fractions):
                 mdot = inf.mass_flow(t)
                 if mdot:
                     hdot = mdot * inf.gas.enthalpy(inf.temperature(t)) / inf.gas.mass
-                    dy[k:k + ns] += mdot * np.asarray(inf.mass_fractions)
+                    dy[k:k + ns] += mdot * y_in
                     dy[c] += mdot
                     dy[c + 1] += hdot
                     if not cav.isothermal:
@@ -194,13 +204,10 @@ class Network:
     def _transfer(self, dy, i, mdot, edot, carrier):
         k, cav = self.offsets[i], self.cavities[i]
         ns = len(cav.initial_masses)
-        dy[k:k + ns] += mdot * np.asarray(carrier.mass_fractions)
+        dy[k:k + ns] += mdot * carrier.mass_fractions
         if not cav.isothermal:
             dy[k + ns] += edot
 
-    def _cavity_ledger(self):
-        base = self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges)
-        return [base + LEDGER_PER_CAVITY * i for i in range(len(self.cavities))]
 
     # hooks used by cavity.integration.integrate
     def events(self) -> list:

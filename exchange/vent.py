@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from .activation import Activation
 from .laws import OrificeLaw
 
@@ -43,7 +45,7 @@ class Ambient:
         g, T = self.gas, self.temperature
         R = g.gas_constant
         return GasPoint(self.pressure, T, self.pressure / (R * T), R, g.gamma(T), g.enthalpy(T) / g.mass,
-                        self.mass_fractions)
+                        np.asarray(self.mass_fractions, dtype=float))
 
 
 @dataclass(frozen=True)
