@@ -17,7 +17,6 @@ import numpy as np
 
 from .gas import GasModel, Mixture
 from .tolerances import R_UNIVERSAL
-from .volume import effective_volume
 
 __all__ = ["Cavity", "CavityState", "ENERGY_MODELS"]
 
@@ -95,7 +94,7 @@ class Cavity:
         return self.heat_transfer_coefficient * self.heat_transfer_area * (T - self.ambient_temperature)
 
 
-@dataclass
+@dataclass(slots=True)
 class CavityState:
     """The gas state of a cavity at one instant (derived from the unknowns; not stored in the ODE)."""
 
@@ -114,16 +113,19 @@ class CavityState:
         """
         ns = len(cavity.initial_masses)
         masses = np.maximum(unknowns[:ns], 0.0)
-        mix = gas.mixture(masses)
-        if cavity.isothermal:
+        mix = gas._mixture_of(masses.tolist())
+        energy = cavity.energy
+        if energy == "isothermal":
             T = cavity.initial_temperature
         elif mix.moles > 0.0:
-            T = mix.temperature(unknowns[ns], T_guess)
+            T = mix.temperature(float(unknowns[ns]), T_guess)
         else:
             T = T_guess
-        V = cavity.total_volume(t)
-        V_eos = effective_volume(V, cavity.minimum_volume)
-        rate = cavity.volume.rate(t) if V > cavity.minimum_volume else 0.0
+        volume = cavity.volume
+        V = volume(t) + cavity.added_volume
+        V_min = cavity.minimum_volume
+        V_eos = V if V > V_min else V_min  # volume.effective_volume(V, V_min), inlined
+        rate = volume.rate(t) if V > V_min else 0.0
         return cls(masses, mix, T, V, rate, mix.moles * R_UNIVERSAL * T / V_eos)
 
     @property

@@ -1,19 +1,19 @@
 """Ideal-gas mixtures tracked by mass per species: pressure, temperature from internal energy, γ, R.
 
 A :class:`GasModel` holds the species of a scene on one common set of temperature ranges. For given species
-masses, :meth:`GasModel.mixture` sums the per-species polynomial coefficients weighted by moles once, so the
-mixture's U(T), cv(T) and cp(T) are single polynomials per range, evaluated in scalar arithmetic inside the ODE
-right-hand side. Temperature is recovered from internal energy by Newton's method on the analytic U(T).
+masses, :meth:`GasModel.mixture` sums the per-species polynomial coefficients weighted by moles (for a range
+only when a temperature in it is asked for), so the mixture's U(T), cv(T) and cp(T) are single polynomials per
+range, evaluated in scalar arithmetic inside the ODE right-hand side. Temperature is recovered from internal
+energy by Newton's method on the analytic U(T) (one division where cp is constant).
 """
 from __future__ import annotations
 
 import bisect
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .species import Species, molar_enthalpy, molar_heat_capacity
+from .species import Species, molar_enthalpy
 from .tolerances import R_UNIVERSAL, TOL
 
 __all__ = ["GasModel", "Mixture", "TemperatureSolveError"]
@@ -23,9 +23,12 @@ class TemperatureSolveError(ArithmeticError):
     """Newton's method could not recover a positive temperature from the internal energy."""
 
 
-@dataclass(frozen=True)
 class Mixture:
     """Thermodynamic polynomial of a fixed amount of mixture: totals over species, per temperature range.
+
+    Immutable by convention. Built by :meth:`GasModel.mixture`, a mixture computes the mole-weighted row of a
+    temperature range only when a temperature in that range is asked for (and keeps the last one), so a scene
+    with CoolProp species of ~20 ranges pays for one range per right-hand-side call, not for all of them.
 
     Attributes
     ----------
@@ -39,18 +42,62 @@ class Mixture:
         Per range: mole-weighted sums of (a, b, c, d, e, f) and the enthalpy offset [J] that makes H continuous.
     """
 
-    moles: float
-    mass: float
-    breaks: tuple
-    rows: list
+    __slots__ = ("moles", "mass", "breaks", "_rows", "_moles_by_species", "_model", "_index", "_current")
+
+    def __init__(self, moles: float, mass: float, breaks: tuple, rows: list | None = None, *,
+                 _moles_by_species=None, _model=None):
+        self.moles = moles
+        self.mass = mass
+        self.breaks = breaks
+        self._rows = rows
+        self._moles_by_species = _moles_by_species  # list (ns,) [mol], with _model: rows are computed lazily
+        self._model = _model  # (per-range per-species rows, per-range "cp is constant" flags)
+        self._index = -1
+        self._current = None
+
+    def __repr__(self) -> str:
+        return f"Mixture(moles={self.moles!r}, mass={self.mass!r}, breaks={self.breaks!r}, rows={self.rows!r})"
+
+    def __eq__(self, other):
+        if not isinstance(other, Mixture):
+            return NotImplemented
+        return (self.moles, self.mass, self.breaks, self.rows) == (other.moles, other.mass, other.breaks, other.rows)
+
+    __hash__ = None  # rows are lists, as before: not hashable
+
+    @property
+    def rows(self) -> list:
+        if self._rows is None:
+            self._rows = [self._combined(i) for i in range(len(self.breaks) + 1)]
+        return self._rows
+
+    def _combined(self, i: int) -> list:
+        """Mole-weighted row of range i from the per-species rows."""
+        n = self._moles_by_species
+        per_species = self._model[0][i]
+        out = [n[0] * v for v in per_species[0]]
+        for k in range(1, len(n)):
+            nk = n[k]
+            if nk:
+                out = [o + nk * v for o, v in zip(out, per_species[k])]
+        return out
+
+    def _range(self, T: float) -> int:
+        return bisect.bisect_right(self.breaks, T) if self.breaks else 0
+
+    def _row_of_range(self, i: int) -> list:
+        if i != self._index:
+            self._current = self._rows[i] if self._rows is not None else self._combined(i)
+            self._index = i
+        return self._current
 
     def _row(self, T):
-        return self.rows[bisect.bisect_right(self.breaks, T)] if self.breaks else self.rows[0]
+        return self._row_of_range(self._range(T))
 
     def enthalpy(self, T: float) -> float:
         """Total enthalpy H(T) [J] (reference: the polynomial antiderivative of the first range)."""
-        r = self._row(T)
-        return molar_enthalpy(r[:6], T) + r[6]
+        a, b, c, d, e, f, off = self._row(T)
+        return T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T + off
 
     def internal_energy(self, T: float) -> float:
         """Total internal energy U(T) = H(T) − n·R_u·T [J]."""
@@ -58,7 +105,8 @@ class Mixture:
 
     def heat_capacity_p(self, T: float) -> float:
         """Total isobaric heat capacity Cp(T) [J/K]."""
-        return molar_heat_capacity(self._row(T)[:6], T)
+        a, b, c, d, e, f, _ = self._row(T)
+        return a + T * (b + T * (c + T * (d + T * f))) + e / (T * T)
 
     def heat_capacity_v(self, T: float) -> float:
         """Total isochoric heat capacity Cv(T) = Cp − n·R_u [J/K]."""
@@ -78,12 +126,24 @@ class Mixture:
         """Temperature [K] whose internal energy is U [J], by Newton's method on the analytic U(T).
 
         U(T) is strictly increasing (Cv > 0), so Newton converges from any positive guess in a few steps;
-        steps are kept above :attr:`Tolerances.temperature_floor`.
+        steps are kept above :attr:`Tolerances.temperature_floor`. Where cp is constant over a range (U linear
+        in T) the Newton step lands on the root at once, and that root is returned as soon as it lies in the
+        same range.
         """
+        nR = self.moles * R_UNIVERSAL
+        linear = self._model[1] if self._model is not None else None
         T = T_guess
         for _ in range(TOL.newton_max_iterations):
-            step = (self.internal_energy(T) - U) / self.heat_capacity_v(T)
-            T_new = T - step
+            i = self._range(T)
+            a, b, c, d, e, f, off = self._row_of_range(i)
+            if linear is not None and linear[i]:
+                T_new = (U - off) / (a - nR)  # U = (a − nR)·T + off exactly
+                if T_new >= TOL.temperature_floor and self._range(T_new) == i:
+                    return T_new
+            else:
+                U_T = T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T + off - nR * T
+                cv = a + T * (b + T * (c + T * (d + T * f))) + e / (T * T) - nR
+                T_new = T - (U_T - U) / cv
             if T_new < TOL.temperature_floor:
                 T_new = 0.5 * (T + TOL.temperature_floor)
             if abs(T_new - T) <= TOL.newton_rtol * T_new:
@@ -115,6 +175,8 @@ class GasModel:
     molar_masses: np.ndarray = field(init=False, repr=False, compare=False)
     breaks: tuple = field(init=False, repr=False, compare=False)
     _table: np.ndarray = field(init=False, repr=False, compare=False)
+    _per_range: tuple = field(init=False, repr=False, compare=False)
+    _molar_mass_list: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         if not self.species:
@@ -128,6 +190,12 @@ class GasModel:
         object.__setattr__(self, "breaks", breaks)
         object.__setattr__(self, "_table", table.reshape(len(self.species), -1))
         object.__setattr__(self, "molar_masses", np.array([s.molar_mass for s in self.species]))
+        # Per range: the per-species rows as Python floats, and whether cp is constant there for every species
+        # (b..f all zero), which makes U linear in T; used by Mixture to build only the rows it needs.
+        per_range = [table[:, i, :].tolist() for i in range(table.shape[1])]
+        linear = tuple(bool(np.all(table[:, i, 1:6] == 0.0)) for i in range(table.shape[1]))
+        object.__setattr__(self, "_per_range", (per_range, linear))
+        object.__setattr__(self, "_molar_mass_list", tuple(float(s.molar_mass) for s in self.species))
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -138,10 +206,15 @@ class GasModel:
 
     def mixture(self, masses) -> Mixture:
         """The mixture polynomial of species masses ``masses`` [kg], shape (ns,)."""
-        masses = np.asarray(masses, dtype=float)
-        n = masses / self.molar_masses
-        rows = (n @ self._table).reshape(-1, 7).tolist()
-        return Mixture(float(n.sum()), float(masses.sum()), self.breaks, rows)
+        m = masses.tolist() if type(masses) is np.ndarray else np.asarray(masses, dtype=float).tolist()
+        if len(m) != len(self._molar_mass_list):
+            raise ValueError(f"expected {len(self._molar_mass_list)} species masses, got {len(m)}")
+        return self._mixture_of(m)
+
+    def _mixture_of(self, m: list) -> Mixture:
+        """:meth:`mixture` of a list of Python floats (no checks): the right-hand side's fast path."""
+        n = [mk / Mk for mk, Mk in zip(m, self._molar_mass_list)]
+        return Mixture(float(sum(n)), float(sum(m)), self.breaks, None, _moles_by_species=n, _model=self._per_range)
 
     def mass_fractions(self, fractions: dict, *, molar: bool = False) -> np.ndarray:
         """Mass fractions (ns,) from a {species: fraction} mapping given by mass or by mole; normalised."""

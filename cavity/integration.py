@@ -194,6 +194,21 @@ def _watched(g, direction):
     return event
 
 
+def _step_budget(system, remaining: int, total: int):
+    """A never-firing event: scipy evaluates it once per accepted step, so it counts the steps of one solve and
+    stops a segment that exceeds the run's step budget (solve_ivp has no step limit of its own)."""
+    count = [0]
+
+    def budget(t, y):
+        count[0] += 1
+        if count[0] > remaining + 1:  # the first call is at the segment's start
+            raise SolverError(f"more than {total} steps before t = {t:.9g} s; {system.describe(t, y)}")
+        return 1.0
+
+    budget.terminal, budget.direction, budget.label = False, 0.0, "step budget"
+    return budget
+
+
 def _state_at_event(system, sol, t_event, options, traj):
     """The state at an event time, integrated to it from the last accepted step rather than interpolated.
 
@@ -225,9 +240,10 @@ def _advance(system, t, y, stop, options, traj):
     remaining = options.max_steps - traj.stats["steps"]
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
+    events = events + [_step_budget(system, remaining, options.max_steps)]
     try:
         sol = solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
-                        max_step=options.max_step, dense_output=True, events=events or None)
+                        max_step=options.max_step, dense_output=True, events=events)
     except (ArithmeticError, ValueError) as exc:
         raise SolverError(f"the right-hand side failed near t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None
     if sol.status == -1:

@@ -45,6 +45,7 @@ class Table:
     name: str = "table"
     extrapolation: str = "constant"
     _xs: list = field(init=False, repr=False, compare=False)
+    _last: list = field(init=False, repr=False, compare=False)  # [segment index of the last lookup]
 
     def __post_init__(self):
         x = np.asarray(self.x, dtype=float).ravel()
@@ -68,10 +69,20 @@ class Table:
         object.__setattr__(self, "x", tuple(float(v) for v in x))
         object.__setattr__(self, "y", tuple(float(v) for v in y))
         object.__setattr__(self, "_xs", list(self.x))
+        object.__setattr__(self, "_last", [0])
 
     def _segment(self, x: float) -> int:
-        """Index i of the segment [x_i, x_{i+1}) holding x, clipped to [0, n-2]."""
-        return min(max(bisect.bisect_right(self._xs, x) - 1, 0), len(self._xs) - 2)
+        """Index i of the segment [x_i, x_{i+1}) holding x, clipped to [0, n-2].
+
+        The segment of the previous lookup is tried first: an integrator asks for nearby times.
+        """
+        xs, last = self._xs, self._last
+        i = last[0]
+        if i + 1 < len(xs) and xs[i] <= x < xs[i + 1]:
+            return i
+        i = min(max(bisect.bisect_right(xs, x) - 1, 0), len(xs) - 2)
+        last[0] = i
+        return i
 
     def __call__(self, x: float) -> float:
         xs, ys = self.x, self.y
