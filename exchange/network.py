@@ -93,7 +93,7 @@ class Network:
         self._segment_end = math.inf
         self.popped = [False] * len(self.exchanges)
         self.holding_since = [None] * len(self.exchanges)
-        self.area_at_activation = [0.0] * len(self.exchanges)
+        self.area_at_activation = [None] * len(self.exchanges)  # set when each exchange opens
 
     def snapshot(self) -> tuple:
         """The discrete state (for reading results back on a segment)."""
@@ -139,9 +139,12 @@ class Network:
 
     def exchange_area(self, index: int, t: float) -> float:
         """Flow area of exchange ``index`` at t [m^2]: the leakage area after activation (window, pop, amplitude)."""
-        ex = self.exchanges[index]
+        ex, act = self.exchanges[index], self.exchanges[index].activation
+        if act is not None and act.delta_area and act.pop_pressure is None and t >= act.open_time \
+                and self.area_at_activation[index] is None:  # opened by time: the area at the opening time
+            self.area_at_activation[index] = self.base_area(index, act.open_time)
         return activated_area(self.base_area(index, t), t, ex.activation, self.popped[index],
-                              self.area_at_activation[index])
+                              self.area_at_activation[index] or 0.0)
 
     def exchange_flows(self, t: float, states: list) -> list:
         """Signed mass flow [kg/s] and the GasPoint it carries, per exchange."""

@@ -112,3 +112,19 @@ def test_vertex_trajectory_reproduces_the_rigid_plate(tmp_path):
     assert np.max(np.abs(a.crossings - b.crossings)) <= 1e-9 and np.array_equal(a.areas, b.areas)
     assert abs(r.summary["cavities"]["tank"]["final pressure [Pa]"]
                / rigid.summary["cavities"]["tank"]["final pressure [Pa]"] - 1) < 1e-9
+
+
+def test_delta_leakage_area_counts_only_area_gained_after_activation(tmp_path):
+    """Abaqus DELTA LEAKAGE AREA: opened while one node column is blocked (3 cm² of 4 open), the vent's flow
+    area is the leakage area minus those 3 cm²: zero while the plate covers more, 1 cm² once it has gone."""
+    scene = plate_scene(tmp_path)
+    (tmp_path / "motion.csv").write_text(f"t,s\n0,0\n{S_STOP / V!r},{S_STOP!r}\n0.03,{S_STOP!r}\n0.035,0\n")
+    t_open = 0.5 * (onset_times()[0] + onset_times()[1])
+    from dataclasses import replace
+
+    ex = replace(scene.exchange[0], open_time=t_open, delta_area=True)
+    r = run(build_model(replace(scene, exchange=(ex,))))
+    t, area = r.column("time"), r.column("vent.area")
+    assert np.all(area[t < t_open] == 0.0) and np.all(area[(t > t_open) & (t < 0.03)] == 0.0)
+    assert np.allclose(area[t > 0.0351], 1e-4, rtol=1e-12)
+    assert r.summary["cavities"]["tank"]["final pressure [Pa]"] < 2.0e5
