@@ -48,8 +48,23 @@ def tank_test_mass_flow(tank_volume: float, tank_pressure_rate: float, gamma: fl
     return tank_volume * tank_pressure_rate / (gamma * R * T_inflator)
 
 
-def _shifted(table: Table, start: float) -> tuple:
-    return tuple(start + x for x in table.breakpoints)
+def scheduled_breakpoints(start: float, *tables) -> tuple:
+    """Absolute times where an inflator's inputs may kink: its start and every row of its tables [s]."""
+    return (start,) + tuple(start + x for table in tables for x in table.breakpoints)
+
+
+def table_mass(table: Table, start: float, scale: float, t0: float, t1: float) -> float:
+    """Exact mass [kg] a mass-flow table (relative to ``start``, times ``scale``) delivers over [t0, t1]."""
+    a, b = max(t0, start) - start, t1 - start
+    return scale * table.integral(a, b) if b > a else 0.0
+
+
+def quadrature_mass(inflator, t0: float, t1: float) -> float:
+    """Mass [kg] an inflator delivers over [t0, t1], by quadrature between its breakpoints."""
+    from scipy.integrate import quad
+
+    pts = sorted({t0, t1, *[b for b in inflator.breakpoints if t0 < b < t1]})
+    return sum(quad(inflator.mass_flow, a, b)[0] for a, b in zip(pts[:-1], pts[1:]))
 
 
 @dataclass(frozen=True)
@@ -87,13 +102,11 @@ class MassTemperatureInflator:
 
     @property
     def breakpoints(self) -> tuple:
-        return (self.start,) + _shifted(self.mass_flow_table, self.start) + _shifted(self.temperature_table,
-                                                                                      self.start)
+        return scheduled_breakpoints(self.start, self.mass_flow_table, self.temperature_table)
 
     def mass_between(self, t0: float, t1: float) -> float:
         """Exact mass delivered over [t0, t1] [kg] (for scales and checks)."""
-        a, b = max(t0, self.start) - self.start, t1 - self.start
-        return self.scale * self.mass_flow_table.integral(a, b) if b > a else 0.0
+        return table_mass(self.mass_flow_table, self.start, self.scale, t0, t1)
 
 
 @dataclass(frozen=True)
@@ -127,12 +140,8 @@ class TankTestInflator:
 
     @property
     def breakpoints(self) -> tuple:
-        return (self.start,) + _shifted(self.tank_pressure_table, self.start) + _shifted(self.temperature_table,
-                                                                                          self.start)
+        return scheduled_breakpoints(self.start, self.tank_pressure_table, self.temperature_table)
 
     def mass_between(self, t0: float, t1: float) -> float:
         """Mass delivered over [t0, t1] [kg], by quadrature between breakpoints."""
-        from scipy.integrate import quad
-
-        pts = sorted({t0, t1, *[b for b in self.breakpoints if t0 < b < t1]})
-        return sum(quad(self.mass_flow, a, b)[0] for a, b in zip(pts[:-1], pts[1:]))
+        return quadrature_mass(self, t0, t1)

@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .gas import Mixture
+from .inflator import quadrature_mass, scheduled_breakpoints, table_mass
 
 __all__ = ["PressureMassInflator", "DualPressureInflator", "choked_inflator_temperature",
            "dual_pressure_mass_flow"]
@@ -91,11 +92,10 @@ class PressureMassInflator:
 
     @property
     def breakpoints(self) -> tuple:
-        return (self.start,) + tuple(self.start + x for x in self.pressure_table.breakpoints + self.mass_flow_table.breakpoints)
+        return scheduled_breakpoints(self.start, self.pressure_table, self.mass_flow_table)
 
     def mass_between(self, t0: float, t1: float) -> float:
-        a, b = max(t0, self.start) - self.start, t1 - self.start
-        return self.scale * self.mass_flow_table.integral(a, b) if b > a else 0.0
+        return table_mass(self.mass_flow_table, self.start, self.scale, t0, t1)
 
 
 @dataclass(frozen=True)
@@ -133,11 +133,7 @@ class DualPressureInflator:
 
     @property
     def breakpoints(self) -> tuple:
-        return (self.start,) + tuple(self.start + x for x in self.pressure_table.breakpoints
-                                     + self.tank_pressure_table.breakpoints)
+        return scheduled_breakpoints(self.start, self.pressure_table, self.tank_pressure_table)
 
     def mass_between(self, t0: float, t1: float) -> float:
-        from scipy.integrate import quad
-
-        pts = sorted({t0, t1, *[b for b in self.breakpoints if t0 < b < t1]})
-        return sum(quad(self.mass_flow, a, b)[0] for a, b in zip(pts[:-1], pts[1:]))
+        return quadrature_mass(self, t0, t1)
