@@ -216,8 +216,10 @@ class Network:
     def events(self) -> list:
         """Switch functions valid in the current discrete state.
 
-        Per exchange: choking (p_low − p_crit, pneumatic laws) and flow reversal (p_a − p_b), because the orifice
-        law's second derivative jumps where flow chokes and its slope is infinite where Δp = 0; and, for a vent
+        Per exchange: choking (p_low − p_crit, pneumatic laws), because the orifice law's second derivative jumps
+        where flow chokes; for an outflow-only vent, Δp = 0, where its flow stops (a kink). A two-way exchange needs
+        no switch at Δp = 0: its laws are C¹ through zero there (the orifice law is linear below Δp/p = 1e-4), and
+        a switch would fire on every overshoot of the equalised (sliding) state; and, for a vent
         with a pop pressure not yet open, the pop crossing, or while holding, the drop below it and the end of
         the hold time.
         """
@@ -226,7 +228,8 @@ class Network:
             if not ex.law.prescribed:
                 if ex.law.pneumatic:
                     out.append(_labelled(lambda t, y, j=j: self._choke_switch(t, y, j), f"{ex.name}:choke"))
-                out.append(_labelled(lambda t, y, j=j: self._dp_switch(t, y, j), f"{ex.name}:reversal"))
+                if ex.downstream is None and not ex.two_way:  # one-way: the flow stops at Δp = 0 (a kink)
+                    out.append(_labelled(lambda t, y, j=j: self._dp_switch(t, y, j), f"{ex.name}:reversal"))
             act = ex.activation
             if act is None or act.pop_pressure is None or self.popped[j]:
                 continue

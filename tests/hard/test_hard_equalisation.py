@@ -2,10 +2,10 @@
 
 The orifice flow behaves like sqrt(Δp) near equalisation: its slope is infinite there and the pressure reaches
 ambient in finite time. With a one-way vent the reversal switch stops the flow exactly there. With a two-way
-vent the flow law pushes back from either side (a sliding mode): today the reversal switch then fires again and
-again (measured: 301 restarts and 15k RHS calls for 17 s of equalised tank, 155 restarts after a vacuum fill),
-so those runs are marked xfail(strict), with a 300-step budget so that they fail fast, until the network holds
-an equalised exchange closed.
+vent the flow law pushes back from either side. A reversal switch used to fire again and again there (301
+restarts for 17 s of equalised tank); two-way exchanges no longer have it (their law is C¹ through Δp = 0), and
+the run now takes 374 steps and 1 event in 0.4 s, but the equalised state is stiff for explicit steps, so those
+runs stay xfail(strict) with a 300-step budget until the network holds an equalised exchange closed.
 """
 import numpy as np
 import pytest
