@@ -31,6 +31,14 @@ GRID_POINTS = 401
 MERGE_CROSSINGS = 1e-12
 
 
+def behind_closest_face(points, closest, normals) -> np.ndarray:
+    """Which points lie inside a convex body: behind the outward normal of the face holding their closest point.
+
+    points, closest, normals : (n, 3) float
+    """
+    return np.einsum("ij,ij->i", points - closest, normals) < 0.0
+
+
 @dataclass
 class Wrapper:
     """Places the nodes of a surface that penetrate convex bodies on the bodies' surfaces.
@@ -58,7 +66,7 @@ class Wrapper:
                 normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
             else:
                 normals = body.mesh.face_normals[prox.faces] @ T[:3, :3].T
-            inside = np.einsum("ij,ij->i", out[near] - prox.closest_points, normals) < 0.0
+            inside = behind_closest_face(out[near], prox.closest_points, normals)
             out[near[inside]] = prox.closest_points[inside]
         return out
 
@@ -133,7 +141,7 @@ def _rigid_placements(wrapper: Wrapper, grid, x0):
     if g_idx.size:
         pts = local[g_idx, c_idx]
         prox = blocker.distances(pts, cutoff=2.0 * sphere.radius)
-        inside = np.einsum("ij,ij->i", pts - prox.closest_points, body.mesh.face_normals[prox.faces]) < 0
+        inside = behind_closest_face(pts, prox.closest_points, body.mesh.face_normals[prox.faces])
         g_in, n_in, cp = g_idx[inside], n_idx[inside], prox.closest_points[inside]
         R, t = T[g_in, :3, :3], T[g_in, :3, 3]
         out[g_in, n_in] = np.einsum("kij,kj->ki", R, cp) + t
@@ -209,7 +217,7 @@ def rigid_batched_gaps(points, bodies, placements, wrapping, cutoff):
         if cand.size:
             prox = blocker.distances(local[cand], cutoff=2.0 * sphere.radius)
             normals = body.mesh.face_normals[prox.faces]
-            out[cand] = np.einsum("ij,ij->i", local[cand] - prox.closest_points, normals) < 0
+            out[cand] = behind_closest_face(local[cand], prox.closest_points, normals)
         return out
 
     def gaps(thetas, nodes):

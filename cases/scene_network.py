@@ -93,7 +93,7 @@ class SceneNetwork(Network):
         dy = super().rhs(t, y)  # states() has set body_state from y
         if self.body is not None:
             k, m = self.body_offset, self.body.motion
-            p = self.states(self.input_time(t), y)[self.pushed].pressure
+            p = self.last_states[self.pushed].pressure
             force = (p - self.ambient.pressure) * self.volume_slope(y[k])  # dV/ds < 0 while intruding
             dy[k] = y[k + 1]
             dy[k + 1] = m.gravity + force / m.mass

@@ -69,6 +69,7 @@ class Network:
     _ambient_point: GasPoint = field(init=False)
     _segment_end: float = field(init=False, default=math.inf)
     _ledger: list = field(init=False)
+    last_states: list = field(init=False, default=None)  # the cavity states of the latest rhs call
     _inflow_fractions: list = field(init=False)
     popped: list = field(init=False)  # per exchange: the pop condition has been met (it stays open)
     holding_since: list = field(init=False)  # per exchange: when Δp last rose above the pop pressure, or None
@@ -173,7 +174,7 @@ class Network:
     def rhs(self, t: float, y) -> np.ndarray:
         """d(unknowns)/dt at (t, y)."""
         t = self.input_time(t)
-        states = self.states(t, y)
+        states = self.last_states = self.states(t, y)
         dy = np.zeros_like(y)
         for cav, k, s, c, fractions in zip(self.cavities, self.offsets, states, self._ledger,
                                            self._inflow_fractions):
