@@ -17,7 +17,7 @@ from .schema import key, parse
 from .scene_checks import check_cross_references
 from .tables_io import table_or_constant
 
-__all__ = ["Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
+__all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
            "ExchangeSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
@@ -208,16 +208,20 @@ class Scene:
         return self.path.parent
 
 
-def load_scene(path) -> Scene:
-    """Read and validate a scene file; every table it names is read and checked too."""
+def read_scene_data(path) -> dict:
+    """The parsed TOML of a scene file, before validation (SceneError if missing or not TOML)."""
     path = Path(path)
     if not path.is_file():
         raise SceneError(path, "", "scene file does not exist")
     try:
-        data = tomllib.loads(path.read_text())
+        return tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(path, "", f"not valid TOML: {exc}") from None
-    return scene_from_dict(data, path)
+
+
+def load_scene(path) -> Scene:
+    """Read and validate a scene file; every table it names is read and checked too."""
+    return scene_from_dict(read_scene_data(path), Path(path))
 
 
 def scene_from_dict(data: dict, path) -> Scene:

@@ -58,18 +58,11 @@ class Plan:
 
 def plan_sweep(scene, vary=None, *, design="full", samples=None, seed=0, variants=None) -> Plan:
     """Read the scene, make the design and check every key against the scene, before anything runs."""
-    import tomllib
-
-    from .scene import scene_from_dict
+    from .scene import read_scene_data, scene_from_dict
     from .sweep_design import make_design, resolve_key, variant_id
 
     shown = Path(scene)
-    if not shown.is_file():
-        raise SceneError(shown, "", "scene file does not exist")
-    try:
-        data = tomllib.loads(shown.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(shown, "", f"not valid TOML: {exc}") from None
+    data = read_scene_data(shown)
     scene_from_dict(data, shown)  # the scene itself is valid
     rows = make_design(vary, design, samples=samples, seed=seed, variants=variants)
     keys = tuple(dict.fromkeys(k for r in rows for k in r))
