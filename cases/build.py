@@ -23,9 +23,9 @@ from exchange.laws import (BulkViscosityLaw, FabricLeakageLaw, FluxLaw, GraefeLa
 from exchange.leakage_table import LeakageTable
 from exchange.vent import Ambient, Exchange
 
-from .build_geometry import Driver, build_bodies, build_leak_area, build_wrapped_volume, cavity_mesh
+from .build_geometry import Driver, build_bodies, build_contact, build_leak_area, build_wrapped_volume, cavity_mesh
 from .errors import SceneError
-from .scene_network import SceneNetwork
+from .scene_network import BodyForces, SceneNetwork
 from .scene import Scene
 from .tables_io import read_table
 
@@ -136,7 +136,8 @@ def _geometry(scene: Scene, t_end: float) -> dict:
     """Bodies, the θ driver, wrapped volumes and blocked areas of a scene with geometry."""
     bodies = build_bodies(scene)
     meshes = {c.name: cavity_mesh(scene, i) for i, c in enumerate(scene.cavity) if c.mesh}
-    extent = max([float(np.linalg.norm(m.extents)) for m in meshes.values()] + [1e-3])
+    extent = max([float(np.linalg.norm(m.extents)) for m in meshes.values()]
+                 + [float(np.linalg.norm(b.mesh.extents)) for b, _ in bodies.values()] + [1e-3])
     driver = Driver(bodies, t_end, extent)
     volumes = {c.name: build_wrapped_volume(scene, i, meshes[c.name], driver)
                for i, c in enumerate(scene.cavity) if c.wrapped_by}
@@ -148,15 +149,23 @@ def _geometry(scene: Scene, t_end: float) -> dict:
 
 def _scene_network(scene, gas, cavities, exchanges, ambient, geo):
     driver = geo["driver"]
-    body, pushed, slope = None, None, None
+    body, pushed, slope, forces, contact = None, None, None, BodyForces(), None
     if driver.dynamic is not None:
         body = driver.dynamic
+        spec = next(b for b in scene.body if b.name == body.name)
+        names = [c.name for c in scene.cavity]
+        forces = BodyForces(spec.spring_stiffness, spec.spring_preload,
+                            names.index(spec.pressure_cavity) if spec.pressure_cavity else None, spec.pressure_area)
         pushed = next((i for i, c in enumerate(scene.cavity) if body.name in c.wrapped_by), None)
-        if pushed is None:
-            raise SceneError(scene.path, "body", f"the dynamic body {body.name!r} wraps no cavity: nothing pushes it")
-        slope = geo["volumes"][scene.cavity[pushed].name].slope
+        contact = build_contact(scene, geo, body)
+        if pushed is None and forces.cavity is None and contact is None:
+            raise SceneError(scene.path, "body", f"the dynamic body {body.name!r} wraps no cavity, has no "
+                                                 "pressure_area and no contact: nothing pushes it")
+        if pushed is not None:
+            slope = geo["volumes"][scene.cavity[pushed].name].slope
+    geo["contact"] = contact
     return SceneNetwork(gas, cavities, exchanges, ambient, areas=tuple(geo["areas"]), body=body, pushed=pushed,
-                        volume_slope=slope, body_state=driver.state)
+                        volume_slope=slope, body_state=driver.state, forces=forces, contact=contact)
 
 
 def _hydraulic(scene: Scene, i: int, volume) -> HydraulicCavity:
@@ -271,7 +280,10 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
 
 def _body_text(b) -> str:
     if b.mass:
-        return f"dynamic, mass {b.mass} kg, initial speed {b.initial_velocity} m/s, gravity {b.gravity} m/s^2"
+        extra = (f", spring {b.spring_stiffness} N/m preloaded {b.spring_preload} N" if b.spring_stiffness or
+                 b.spring_preload else "")
+        extra += f", gauge pressure of {b.pressure_cavity!r} on {b.pressure_area} m^2" if b.pressure_area else ""
+        return f"dynamic, mass {b.mass} kg, initial speed {b.initial_velocity} m/s, gravity {b.gravity} m/s^2{extra}"
     return "prescribed displacement table" if b.displacement_table else f"prescribed speed {b.velocity} m/s"
 
 
@@ -303,5 +315,22 @@ def _modelled(scene: Scene, cavities) -> dict:
         "blockage": {e.name: f"leakage surface blocked by {list(e.blocked_by)}, tolerance {e.contact_tolerance} m"
                      for e in scene.exchange if e.blocked_by} or "not modelled",
         "bodies": {b.name: _body_text(b) for b in scene.body} or "none",
-        "contact": "not modelled (bodies are rigid; cavity nodes are placed on them, no contact force model)",
+        "contact": {c.name: _contact_text(c) for c in scene.contact} or
+                   "not modelled (bodies are rigid; cavity nodes are placed on them, no contact force model)",
     }
+
+
+def _contact_text(c) -> str:
+    law = {"hard": "hard (kinematic): held on the seat while the reaction is compressive, lift-off located as an "
+                   "event at zero reaction, perfectly plastic impact",
+           "linear": f"linear penalty, stiffness {c.stiffness} Pa/m",
+           "exponential": f"softened exponential, p0 {c.pressure} Pa at zero clearance, zero at {c.clearance} m"}
+    damping = {"none": "no damping",
+               "coefficient": f"viscous damping mu0 {c.mu0} Pa s/m, {c.style} style"
+                              + (f", clearance {c.damping_clearance} m, eta {c.eta}" if c.style == "standard" else ""),
+               "critical_fraction": f"critical damping fraction {c.critical_fraction} (explicit style)"}
+    tangent = c.tangent_fraction if c.tangent_fraction >= 0 else (1.0 if c.damping == "critical_fraction" or
+                                                                   c.style == "explicit" else 0.0)
+    seat = f"leakage surface of {c.seat!r}" if c.seat else f"mesh {c.seat_mesh!r}"
+    return (f"{c.body!r} on {seat}: {law[c.pressure_overclosure]}; {damping[c.damping]}; tangent fraction "
+            f"{tangent} (stored, no tangential forces); CPRESS per seat node in contact.npz")

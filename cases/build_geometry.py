@@ -12,7 +12,7 @@ from .geometry import Wrapper, blocked_area_track, rigid_batched_gaps, wrapped_v
 from .scene_network import BodyState, GeometricArea
 from .tables_io import read_table
 
-__all__ = ["build_bodies", "Driver", "build_wrapped_volume", "build_leak_area", "load_mesh"]
+__all__ = ["build_bodies", "Driver", "build_wrapped_volume", "build_leak_area", "load_mesh", "build_contact"]
 
 
 def load_mesh(scene, file: str, where: str):
@@ -172,3 +172,47 @@ def cavity_mesh(scene, i):
     except MeshError as exc:
         raise SceneError(scene.path, f"cavity[{i}].mesh", str(exc)) from None
     return mesh
+
+
+def _contact_law(c):
+    from .contact import ContactDamping, Hard, LinearPenalty, Softened
+
+    law = {"hard": Hard, "linear": lambda: LinearPenalty(c.stiffness),
+           "exponential": lambda: Softened(c.clearance, c.pressure)}[c.pressure_overclosure]()
+    damping = None
+    if c.damping == "coefficient":
+        damping = ContactDamping(c.mu0, c.damping_clearance, c.eta, c.style,
+                                 c.tangent_fraction if c.tangent_fraction >= 0 else None)
+    return law, damping, (c.critical_fraction if c.damping == "critical_fraction" else None)
+
+
+def build_contact(scene, geo, body):
+    """The SeatContact of the dynamic body (None if it has no [[contact]])."""
+    from .seat_contact import SeatContact, nodal_areas, ray_gaps
+
+    found = [(i, c) for i, c in enumerate(scene.contact) if c.body == body.name]
+    if not found:
+        return None
+    i, c = found[0]
+    where = f"contact[{i}]"
+    names = [e.name for e in scene.exchange]
+    if c.seat:
+        j = names.index(c.seat)
+        surface = geo["surfaces"][j][0]
+    else:
+        j = None
+        try:
+            surface = blockage.LeakageSurface.read(scene.base / c.seat_mesh)
+        except Exception as exc:
+            raise SceneError(scene.path, f"{where}.seat_mesh", f"cannot read {c.seat_mesh!r}: {exc}") from None
+    nodes = np.asarray(surface.vertices, dtype=float)
+    tri = body.vertices_at(0.0)[np.asarray(body.mesh.faces)]
+    axis = np.broadcast_to(np.asarray(body.axis, dtype=float), nodes.shape)
+    up, down = ray_gaps(nodes, axis, tri), ray_gaps(nodes, -axis, tri)
+    sigma = np.where(up <= down, 1.0, -1.0)
+    g0 = np.minimum(up, down)
+    if not np.isfinite(g0).any():
+        raise SceneError(scene.path, where, f"no seat node faces body {body.name!r} along its axis: they never touch")
+    law, damping, fraction = _contact_law(c)
+    return SeatContact(c.name, body.name, law, damping, fraction, g0, sigma, nodal_areas(surface),
+                       body.motion.mass, nodes, np.asarray(surface.faces), j)

@@ -24,6 +24,11 @@ def _run(args) -> int:
     if not args.quiet:
         for name, cav in results.summary["cavities"].items():
             print(f"{name}: peak pressure {cav['peak pressure [Pa]']:.6g} Pa at {cav['peak pressure time [s]']:.6g} s")
+        for name, c in results.summary.get("contact", {}).items():
+            opened = (f", opens at {c['opening pressures [Pa]'][0]:.9g} Pa (preload predicts "
+                      f"{c['opening pressure predicted [Pa]']:.9g} Pa)" if "opening pressures [Pa]" in c else "")
+            print(f"{name}: {c['lift-offs']} lift-offs, {c['reseats']} reseats, peak CPRESS "
+                  f"{c['peak CPRESS [Pa]']:.6g} Pa{opened}")
         st = results.summary["solver"]
         print(f"solver {st['method']}: {st['steps']} steps, {st['rhs_calls']} RHS calls, {st['events']} events, "
               f"{st['wall time [s]']:.3f} s")

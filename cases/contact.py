@@ -1,7 +1,8 @@
 """Normal contact mechanics: pressure-overclosure laws, contact damping and CPRESS (issue 7).
 
 Pure scalar functions and small frozen dataclasses after Abaqus Analysis User's Guide 37.1.2 ("Contact
-pressure-overclosure relationships") and 37.1.3 ("Contact damping"). Nothing here is wired into scenes yet.
+pressure-overclosure relationships") and 37.1.3 ("Contact damping"). Scenes evaluate the same laws on arrays of
+seat nodes in :mod:`cases.seat_contact` (``[[contact]]`` tables, docs/contact.md).
 
 Sign conventions (SI throughout):
 

@@ -30,6 +30,8 @@ CASES = {
     "airbag_impactor": "airbag_impactor.toml",
     "airbag_impactor_dynamic": "airbag_impactor_dynamic.toml",
     "seal_vent": "seal_vent.toml",
+    "relief_valve": "relief_valve.toml",
+    "relief_valve_undamped": "relief_valve_undamped.toml",
 }
 
 

@@ -1,4 +1,5 @@
-"""Write a run's results atomically: history.csv, summary.json, history.png (temp file, then rename)."""
+"""Write a run's results atomically: history.csv, summary.json, history.png, and with contact contact.npz
+(per seat node CPRESS [Pa] and status at the output times) (temp file, then rename)."""
 from __future__ import annotations
 
 import json
@@ -89,4 +90,9 @@ def write_results(results, out: Path) -> dict:
     write_history(paths["history"], results.columns, results.history)
     write_summary(paths["summary"], results.summary)
     plot_history(paths["plot"], results.columns, results.history, results.model.scene.title)
+    if getattr(results, "contact", None) is not None:
+        paths["contact"] = out / "contact.npz"
+        with atomic_path(paths["contact"]) as tmp:
+            with open(tmp, "wb") as fh:
+                np.savez_compressed(fh, **results.contact)
     return paths

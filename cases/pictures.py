@@ -32,9 +32,16 @@ def frame_at(results, j: int, t: float):
     fraction = np.divide(res.face_blocked_area, areas, out=np.zeros_like(areas), where=areas > 0)
     bodies = tuple((geo["bodies"][n][0].vertices_at(th), geo["bodies"][n][0].mesh.faces) for n in spec.blocked_by)
     net.restore(results.trajectory.mode_at(t))
-    p = net.states(t, results.trajectory(t))[net.exchanges[j].upstream].pressure
+    y = results.trajectory(t)
+    p = net.states(t, y)[net.exchanges[j].upstream].pressure
+    cpress = status = None
+    contact = geo.get("contact")
+    if contact is not None and contact.exchange == j:
+        from .contact_results import nodal_state
+
+        cpress, status, _ = nodal_state(net, t, y)
     return Frame(t, p, leak.vertices, leak.faces, np.clip(fraction, 0.0, 1.0), res.active_nodes,
-                 res.distances, bodies)
+                 res.distances, bodies, cpress=cpress, contact_status=status)
 
 
 def frames_for(results, j: int, times) -> list:
@@ -49,12 +56,23 @@ def blocked_exchanges(results) -> list:
 
 
 def default_times(results, j: int) -> list:
-    """Before any blockage (t = 0) and when the leakage area is smallest."""
+    """Before any blockage (t = 0) and when the leakage area is smallest; for a contact seat, at the largest
+    lift of its first opening."""
     name = results.model.network.exchanges[j].name
     info = results.summary.get("blockage", {}).get(name, {})
     t_min = info.get("minimum leakage area time [s]")
     t_end = results.model.scene.time.end
-    return [0.0] + ([min(t_min + 1e-9, t_end)] if t_min else [])
+    times = [0.0] + ([min(t_min + 1e-9, t_end)] if t_min else [])
+    contact = results.model.geometry.get("contact")
+    if contact is not None and contact.exchange == j:  # a seat: also at the largest lift of its first opening
+        c = results.summary["contact"][contact.name]
+        lifts = c["lift-off times [s]"]
+        if lifts:
+            seats = [t for t in c["reseat times [s]"] if t > lifts[0]]
+            ts = np.linspace(lifts[0], seats[0] if seats else t_end, 201)
+            lift = np.abs(results.trajectory.sample(ts)[:, results.model.network.body_offset])
+            times.append(float(ts[int(np.argmax(lift))]))
+    return times
 
 
 def write_pictures(results, out: Path, *, times=None, animation_frames: int = 30) -> dict:

@@ -81,6 +81,10 @@ class Frame:
         Blocking bodies at this time (drawn translucent).
     context : tuple of ((k, 3) float, (l, 3|4) int)
         Other surfaces drawn opaque light grey (e.g. the rest of the cushion).
+    cpress : (n,) float or None
+        Contact pressure per node [Pa] when the surface is a contact seat (written to the VTK series).
+    contact_status : (n,) uint8 or None
+        0 open, 1 closed, 2 VD (viscous damping within the damping clearance), with ``cpress``.
     """
 
     time: float
@@ -92,6 +96,8 @@ class Frame:
     gaps: np.ndarray
     bodies: tuple
     context: tuple = ()
+    cpress: object = None
+    contact_status: object = None
 
     def __post_init__(self):
         n_faces, n_nodes = len(self.leak_faces), len(self.leak_vertices)
@@ -99,6 +105,9 @@ class Frame:
                   "blocked_fraction": (np.shape(self.blocked_fraction), (n_faces,)),
                   "active_nodes": (np.shape(self.active_nodes), (n_nodes,)),
                   "gaps": (np.shape(self.gaps), (n_nodes,))}
+        if self.cpress is not None:
+            shapes.update(cpress=(np.shape(self.cpress), (n_nodes,)),
+                          contact_status=(np.shape(self.contact_status), (n_nodes,)))
         for name, (got, want) in shapes.items():
             if got != want:
                 raise ValueError(f"Frame.{name} must have shape {want}, got {got}")

@@ -6,7 +6,10 @@ Each ``.vtp`` is the leakage surface at that time (polygons: triangles and quads
 - point data ``active`` (uint8): 1 for an active blockage node, else 0;
 - point data ``gap`` (float64) [m]: distance to the nearest blocking face minus the contact tolerance,
   ``NaN`` where the node is beyond the detection cutoff (``inf`` in the frame), so that ParaView's colour
-  range stays finite.
+  range stays finite;
+- on a contact seat (issue 7), point data ``CPRESS`` (float64) [Pa]: contact pressure of closed nodes, viscous
+  damping pressure of open nodes within the damping clearance, else 0; and ``status`` (uint8): 0 open,
+  1 closed, 2 VD (the names are in the field data ``status_names``).
 
 The ``.pvd`` file lists the ``.vtp`` files (relative paths) with their time in seconds, so ParaView's time
 slider shows the run's time. Every file is written under a temporary name and renamed into place.
@@ -69,6 +72,10 @@ def leak_polydata(frame):
     mesh.point_data["active"] = np.asarray(frame.active_nodes, dtype=bool).astype(np.uint8)
     gaps = np.asarray(frame.gaps, dtype=np.float64)
     mesh.point_data["gap"] = np.where(np.isfinite(gaps), gaps, np.nan)
+    if getattr(frame, "cpress", None) is not None:
+        mesh.point_data["CPRESS"] = np.asarray(frame.cpress, dtype=np.float64)
+        mesh.point_data["status"] = np.asarray(frame.contact_status, dtype=np.uint8)
+        mesh.field_data["status_names"] = np.array(["open", "closed", "VD"])
     return mesh
 
 

@@ -11,6 +11,7 @@ from cavity.integration import Trajectory, integrate
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 
 from .build import Model, build_model
+from .contact_results import contact_columns, contact_row, contact_summary, nodal_history
 from .scene import Scene, load_scene
 
 __all__ = ["Results", "run", "run_scene", "history_columns"]
@@ -25,6 +26,7 @@ class Results:
     columns: list
     history: np.ndarray
     summary: dict = field(default_factory=dict)
+    contact: dict | None = None  # per-node CPRESS and status at the output times (contact.npz)
 
     def column(self, name: str) -> np.ndarray:
         """One history column by its name without the unit, e.g. ``"tank.pressure"``."""
@@ -41,7 +43,7 @@ def history_columns(model: Model) -> list:
                  f"{c.name}.volume [m^3]"]
     for e in model.network.exchanges:
         cols += [f"{e.name}.mass_flow [kg/s]", f"{e.name}.area [m^2]"]
-    return cols
+    return cols + contact_columns(model)
 
 
 def quantities(model: Model, t: float, y, mode=None) -> list:
@@ -54,7 +56,7 @@ def quantities(model: Model, t: float, y, mode=None) -> list:
         row += [s.pressure, s.temperature, s.mass if s.mixture is None else s.mixture.mass, s.volume]
     for j, (mdot, _) in enumerate(net.exchange_flows(t, states)):
         row += [mdot, net.exchange_area(j, t)]
-    return row
+    return row + contact_row(model, t, y)
 
 
 def pressure_at(model: Model, traj: Trajectory, i: int, t: float) -> float:
@@ -125,7 +127,11 @@ def run(model: Model, *, progress: bool = False) -> Results:
         summary["blockage"] = blockage_summary(model, traj, history)
         if getattr(net, "body", None) is not None:
             summary["impactor"] = impactor_summary(model, traj)
-    return Results(model, traj, history_columns(model), history, summary)
+    contact = None
+    if getattr(net, "contact", None) is not None:
+        summary["contact"] = {net.contact.name: contact_summary(model, traj)}
+        contact = nodal_history(model, traj, model.output_times)
+    return Results(model, traj, history_columns(model), history, summary, contact)
 
 
 def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dict:

@@ -15,10 +15,11 @@ from cavity.integration import METHODS
 from .errors import SceneError
 from .schema import key, parse
 from .scene_checks import check_cross_references
+from .scene_contact import ContactSpec, check_contacts
 from .tables_io import table_or_constant
 
 __all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
-           "ExchangeSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
+           "ExchangeSpec", "ContactSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
 LAWS = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",
@@ -183,6 +184,14 @@ class BodySpec:
     mass: float = key("dynamic body: mass (0: prescribed motion)", "kg", default=0.0, check="nonnegative")
     initial_velocity: float = key("dynamic body: initial speed along `axis`", "m/s", default=0.0, check="finite")
     gravity: float = key("dynamic body: acceleration along `axis`", "m/s^2", default=0.0, check="finite")
+    spring_stiffness: float = key("dynamic body: spring stiffness k; spring force −(spring_preload + k·s) along "
+                                  "`axis`", "N/m", default=0.0, check="nonnegative")
+    spring_preload: float = key("dynamic body: spring force against `axis` at s = 0 (a poppet's preload)", "N",
+                                default=0.0, check="nonnegative")
+    pressure_area: float = key("dynamic body: area on which the gauge pressure of `pressure_cavity` pushes it "
+                               "along `axis`", "m^2", default=0.0, check="nonnegative")
+    pressure_cavity: str = key("dynamic body: the cavity whose gauge pressure acts on `pressure_area`",
+                               default="")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -195,6 +204,8 @@ class Scene:
     cavity: tuple = key("[[cavity]] tables")
     exchange: tuple = key("[[exchange]] tables", default=())
     body: tuple = key("[[body]] tables: rigid bodies that block vents and wrap cavities", default=())
+    contact: tuple = key("[[contact]] tables: contact of the dynamic body with a seat surface (docs/contact.md)",
+                         default=())
     _path: str = ""
 
     @property
@@ -288,10 +299,13 @@ def scene_from_dict(data: dict, path) -> Scene:
         "cavity": many(CavitySpec, cavity_nested),
         "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3),
                                 "rotation_axis": vector(3), "rotation_centre": vector(3)}),
-        "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,"discharge_coefficient": number_or_table("discharge coefficient [-]"),
+        "contact": many(ContactSpec),
+        "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,
+                                        "discharge_coefficient": number_or_table("discharge coefficient [-]"),
                                         "flux_amplitude": table("flux amplitude [-]"),
                                         "amplitude": table("area amplitude [-]")}),
     })
     scene = replace(scene, _path=str(path))
     check_cross_references(scene, path)
+    check_contacts(scene, path, data)
     return scene

@@ -75,6 +75,16 @@ def _check_bodies(scene: Scene, path) -> None:
         for k in ("rotation_table", "vertex_trajectory"):
             if getattr(b, k) and not (scene.base / getattr(b, k)).is_file():
                 raise SceneError(path, f"body[{i}].{k}", f"file {getattr(b, k)!r} does not exist")
+        forces = ("spring_stiffness", "spring_preload", "pressure_area", "pressure_cavity")
+        given = [k for k in forces if getattr(b, k)]
+        if given and not b.mass:
+            raise SceneError(path, f"body[{i}].{given[0]}", "only a dynamic body (mass > 0) feels forces")
+        if bool(b.pressure_area) != bool(b.pressure_cavity):
+            raise SceneError(path, f"body[{i}].pressure_cavity", "give pressure_area and pressure_cavity together")
+        cavities = [c.name for c in scene.cavity]
+        if b.pressure_cavity and b.pressure_cavity not in cavities:
+            raise SceneError(path, f"body[{i}].pressure_cavity", f"no cavity named {b.pressure_cavity!r}"
+                                                                 f"{suggest(b.pressure_cavity, cavities)}")
     if sum(1 for b in scene.body if b.mass) > 1:
         raise SceneError(path, "body", "at most one dynamic body (mass > 0) per scene")
     if any(b.mass for b in scene.body):

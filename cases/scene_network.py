@@ -4,6 +4,13 @@ Extends :class:`exchange.network.Network` with two unknowns per dynamic body (di
 [m/s] along its axis) and with exchanges whose area comes from a :class:`cases.geometry.BlockedArea`. For
 prescribed motion the area's jumps are known times (breakpoints); for a dynamic body they are switch
 functions s − s_k on the two crossings next to the body's current displacement.
+
+The dynamic body obeys m·dv/dt = m·g + F_wrap + F_pressure + F_spring + F_contact along its axis
+(:class:`BodyForces`). With hard contact (:class:`cases.seat_contact.SeatContact`) the body has two modes: *held*
+on the seat (s and v frozen, the contact force F_c the reaction balancing the other forces) and *free*. One switch
+function per contact, labelled ``<contact>:seat``, is F_c/F_scale while held (it fires when the reaction reaches
+zero: lift-off, located exactly) and −g_min/L while free (it fires at impact, where v is set to 0: kinematic
+contact is perfectly plastic). Penalty and softened contact add switches at the kinks of their force.
 """
 from __future__ import annotations
 
@@ -13,7 +20,18 @@ import numpy as np
 
 from exchange.network import Network, _labelled
 
-__all__ = ["SceneNetwork", "BodyState", "GeometricArea"]
+__all__ = ["SceneNetwork", "BodyState", "GeometricArea", "BodyForces"]
+
+
+@dataclass(frozen=True)
+class BodyForces:
+    """Forces on the dynamic body besides wrapping and contact: a spring −(preload + k·s) along the axis, and the
+    gauge pressure of cavity ``cavity`` on ``area`` [m²] along it."""
+
+    stiffness: float = 0.0
+    preload: float = 0.0
+    cavity: int | None = None
+    area: float = 0.0
 
 
 @dataclass
@@ -35,7 +53,10 @@ class GeometricArea:
 @dataclass
 class SceneNetwork(Network):
     """A Network plus bodies. ``areas``: per exchange a GeometricArea or None; ``body``: the dynamic body or None;
-    ``pushed``: index of the cavity whose gauge pressure pushes the dynamic body; ``volume_slope(s)``: dV/ds of it.
+    ``pushed``: index of the cavity whose gauge pressure pushes the dynamic body; ``volume_slope(s)``: dV/ds of it;
+    ``forces``: its spring and pressure area; ``contact``: its SeatContact (``held``: hard contact holds it now;
+    ``contact_log``: (t, kind, approach speed [m/s], pressure of the pressure cavity [Pa]) of every impact,
+    lift-off, touch and separation).
     """
 
     areas: tuple = ()
@@ -43,10 +64,15 @@ class SceneNetwork(Network):
     pushed: int | None = None
     volume_slope: object = None
     body_state: BodyState = field(default_factory=BodyState)
+    forces: BodyForces = field(default_factory=BodyForces)
+    contact: object = None  # cases.seat_contact.SeatContact or None
     intervals: list = field(init=False, default_factory=list)
+    held: bool = field(init=False, default=False)
+    contact_log: list = field(init=False, default_factory=list)  # (t, kind, approach speed, pressure)
 
     def reset(self) -> None:
         super().reset()
+        self.held, self.contact_log = False, []
         self.intervals = [None] * len(self.exchanges)
         if self.body is not None:
             self.body_state.s, self.body_state.v = 0.0, self.body.motion.initial_velocity
@@ -66,6 +92,9 @@ class SceneNetwork(Network):
         y = super().initial_state()
         if self.body is not None:
             y[self.body_offset:] = (0.0, self.body.motion.initial_velocity)
+            c = self.contact
+            if c is not None and c.hard and y[self.body_offset + 1] == 0.0 and c.held_sigma(0.0):
+                self.held = self.reaction(0.0, y) > 0.0
         return y
 
     @property
@@ -91,13 +120,52 @@ class SceneNetwork(Network):
 
     def rhs(self, t, y):
         dy = super().rhs(t, y)  # states() has set body_state from y
-        if self.body is not None:
+        if self.body is not None and not self.held:
             k, m = self.body_offset, self.body.motion
-            p = self.last_states[self.pushed].pressure
-            force = (p - self.ambient.pressure) * self.volume_slope(y[k])  # dV/ds < 0 while intruding
+            force = self.applied_force(y, self.last_states)
+            if self.contact is not None:
+                force += self.contact.force(y[k], y[k + 1])
             dy[k] = y[k + 1]
             dy[k + 1] = m.gravity + force / m.mass
         return dy
+
+    def applied_force(self, y, states) -> float:
+        """Force on the dynamic body along its axis from wrapping, pressure area and spring [N] (not gravity)."""
+        k, f, force = self.body_offset, self.forces, 0.0
+        if self.pushed is not None:
+            p = states[self.pushed].pressure
+            force += (p - self.ambient.pressure) * self.volume_slope(y[k])  # dV/ds < 0 while intruding
+        if f.cavity is not None:
+            force += (states[f.cavity].pressure - self.ambient.pressure) * f.area
+        return force - f.preload - f.stiffness * y[k]
+
+    def reaction(self, t, y) -> float:
+        """Hard contact held: the seat's reaction F_c [N] (> 0 compressive) balancing the other forces at rest."""
+        k, m = self.body_offset, self.body.motion
+        net = self.applied_force(y, self.states(self.input_time(t), y)) + m.mass * m.gravity
+        return -self.contact.held_sigma(y[k]) * net
+
+    def force_scale(self) -> float:
+        m, f = self.body.motion, self.forces
+        return max(f.preload + m.mass * abs(m.gravity), 1e-9)
+
+    def _seat_switch(self, t, y):
+        c, k = self.contact, self.body_offset
+        if self.held:
+            return self.reaction(t, y) / self.force_scale()
+        return -float(np.min(c.gaps(y[k])[c.reach])) / c.size
+
+    def _contact_events(self) -> list:
+        c, k = self.contact, self.body_offset
+        if c.hard:
+            out = [_labelled(lambda t, y: self._seat_switch(t, y), f"{c.name}:seat")]
+            if self.held:
+                return out
+        else:
+            out = []
+        for i, s_k in enumerate(c.thresholds()):
+            out.append(_labelled(lambda t, y, s_k=s_k: (y[k] - s_k) / c.size, f"{c.name}:kink-{i}"))
+        return out
 
     def events(self):
         out = super().events()
@@ -111,23 +179,62 @@ class SceneNetwork(Network):
                 out.append(_labelled(lambda t, y, c=crossings[i - 1]: (y[k] - c) / scale, f"{name}:contact-{i}-down"))
             if i < len(crossings):
                 out.append(_labelled(lambda t, y, c=crossings[i]: (y[k] - c) / scale, f"{name}:contact-{i}-up"))
+        if self.contact is not None:
+            out += self._contact_events()
         return out
 
     def on_event(self, t, y, label):
         name, _, kind = label.rpartition(":")
+        if kind == "seat":
+            return self._seat_event(t, y)
+        if kind.startswith("kink-"):
+            self._log_touch(t, y)
+            return y
         if kind.startswith("contact-"):
             j = next(k for k, ex in enumerate(self.exchanges) if ex.name == name)
             self.intervals[j] += 1 if kind.endswith("-up") else -1
             return y
         return super().on_event(t, y, label)
 
+    def _seat_event(self, t, y):
+        """Hard contact: lift-off (held -> free) or impact (free -> on the seat with v = 0, held if the reaction is
+        compressive; s is set to the exact touching position, as kinematic contact allows no penetration)."""
+        k, c = self.body_offset, self.contact
+        if self.held:
+            self.held = False
+            self.contact_log.append((t, "lift-off", 0.0, self._pressure(t, y)))
+            return y
+        reach = np.flatnonzero(c.reach)
+        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
+        approach = -c.sigma[i] * y[k + 1]
+        if approach <= 0.0:  # not approaching: the gap has just opened
+            return y
+        y = np.array(y, dtype=float)
+        y[k], y[k + 1] = -c.g0[i] / c.sigma[i], 0.0
+        self.held = self.reaction(t, y) > 0.0
+        self.contact_log.append((t, "impact", float(approach), self._pressure(t, y)))
+        return y
+
+    def _pressure(self, t, y) -> float:
+        f = self.forces.cavity
+        return float(self.states(self.input_time(t), y)[f].pressure) if f is not None else float("nan")
+
+    def _log_touch(self, t, y):
+        """Penalty/softened contact: record first touch and full separation (the kinks where g_min = 0)."""
+        k, c = self.body_offset, self.contact
+        reach = np.flatnonzero(c.reach)
+        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
+        if abs(c.gaps(y[k])[i]) <= 1e-9 * c.size:
+            approach = float(-c.sigma[i] * y[k + 1])
+            self.contact_log.append((t, "touch" if approach > 0 else "separate", approach, self._pressure(t, y)))
+
     def snapshot(self):
-        return super().snapshot() + (tuple(self.intervals),)
+        return super().snapshot(), tuple(self.intervals), self.held
 
     def restore(self, mode):
         if mode is not None:
-            super().restore(mode[:3])
-            self.intervals = list(mode[3])
+            super().restore(mode[0])
+            self.intervals, self.held = list(mode[1]), mode[2]
 
     def describe(self, t, y):
         text = super().describe(t, y)

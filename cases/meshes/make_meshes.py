@@ -5,6 +5,8 @@
 * ``seal_chamber.ply``: a closed cylindrical chamber (radius 40 mm, height 30 mm) whose top disc has a leak
   path ring selected by a box in the scene.
 * ``seal_leak.obj``: an annular leak path of quads (inner radius 10 mm, outer 20 mm) in the plane z = 0.
+* ``relief_seat.obj``: the annular seat of the relief valve (inner radius 5 mm, outer 6 mm, 48 x 2 quads) in the
+  plane z = 0; the poppet (a box in the scene) rests on it.
 * ``seal_flange.ply``: a 60 x 60 x 5 mm flange plate tilted by 0.1° about y, its lower face 1 mm above the leak
   path at x = 0, so that it closes the path progressively as it comes down.
 """
@@ -48,6 +50,7 @@ def main():
     chamber.apply_translation((0, 0, -0.015))  # top disc at z = 0
     chamber.export(HERE / "seal_chamber.ply")
     write_obj(HERE / "seal_leak.obj", *annulus_quads())
+    write_obj(HERE / "relief_seat.obj", *annulus_quads(0.005, 0.006, 48, 2))
     flange = trimesh.creation.box(extents=(0.06, 0.06, 0.005))
     tilt = math.radians(0.1)
     flange.apply_transform(trimesh.transformations.rotation_matrix(-tilt, (0, 1, 0)))
