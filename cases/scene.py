@@ -9,6 +9,7 @@ import math
 import tomllib
 from dataclasses import dataclass, replace
 from pathlib import Path
+from types import SimpleNamespace
 
 from cavity.integration import METHODS
 
@@ -235,10 +236,8 @@ def load_scene(path) -> Scene:
     return scene_from_dict(read_scene_data(path), Path(path))
 
 
-def scene_from_dict(data: dict, path) -> Scene:
-    """Validate an already-parsed scene (the TOML's dict); ``path`` anchors relative file names."""
-    path = Path(path)
-    base = path.parent
+def _converters(path: Path, base: Path) -> SimpleNamespace:
+    """The value converters of a scene file at ``path`` (relative file names resolve against ``base``)."""
 
     def many(spec_cls, nested=None):
         def convert(value, where):
@@ -287,6 +286,16 @@ def scene_from_dict(data: dict, path) -> Scene:
             return table_or_constant(v, base, path, where, name)
         return convert
 
+    return SimpleNamespace(many=many, composition=composition, table=table, vector=vector, names_list=names_list,
+                           number_or_table=number_or_table)
+
+
+def scene_from_dict(data: dict, path) -> Scene:
+    """Validate an already-parsed scene (the TOML's dict); ``path`` anchors relative file names."""
+    path = Path(path)
+    c = _converters(path, path.parent)
+    many, composition, table, vector = c.many, c.composition, c.table, c.vector
+    names_list, number_or_table = c.names_list, c.number_or_table
     inflator_nested = {"gas": composition, "temperature": table("temperature [K]"),
                        "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]"),
                        "inflator_pressure": table("inflator pressure [Pa]")}
