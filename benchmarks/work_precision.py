@@ -50,14 +50,19 @@ RTOLS = tuple(10.0 ** -k for k in range(3, 13))
 QUICK_RTOLS = (1e-3, 1e-6, 1e-9)
 EULER_STEPS = (100, 300, 1000, 3000, 10_000, 30_000, 100_000)
 HEUN_STEPS = (100, 300, 1000, 3000, 10_000, 30_000)
+COMPILED_STEPS = (100, 300, 1000, 3000, 10_000, 30_000, 100_000, 300_000, 1_000_000, 3_000_000)
 QUICK_STEPS = (100, 1000)
+QUICK_COMPILED_STEPS = (1000, 100_000, 1_000_000)
 TARGETS = (1e-6, 1e-9)
+DEFAULT = "ventsim DOP853"  # the default path: compiled DOP853 (Python solve_ivp where a network cannot be lowered)
+PYTHON_DOP853 = "ventsim DOP853 (Python)"
 
 
-def run_case(case, rtols, euler_steps, heun_steps, log) -> list:
+def run_case(case, rtols, euler_steps, heun_steps, log, compiled_steps=COMPILED_STEPS) -> list:
     runs = []
     default = case.scene.solver.method
     methods = [default] + [m for m in C.SCIPY_METHODS if m != default]
+    C.warm_up(case)
     for m in methods:
         for rtol in rtols:
             if case.reference_rtol is not None and m == default and rtol == case.reference_rtol:
@@ -65,13 +70,17 @@ def run_case(case, rtols, euler_steps, heun_steps, log) -> list:
                                   note="is the reference"))
                 continue
             runs.append(C.run_ventsim(case, m, rtol, label=f"ventsim {m}"))
-    log(f"  ventsim integrator done ({len(runs)} runs)")
+    runs += [C.run_ventsim(case, "DOP853", rtol, label=PYTHON_DOP853, compiled=False) for rtol in rtols]
+    paths = sorted({r.extra.get("path", "?") for r in runs if r.method == DEFAULT and r.extra})
+    log(f"  ventsim integrator done ({len(runs)} runs; default path: {', '.join(paths)})")
     for m in methods:
         for rtol in rtols:
             runs.append(C.run_plain_scipy(case, m, rtol))
     log("  plain solve_ivp done")
     runs += [C.run_fixed_step(case, n, "euler") for n in euler_steps]
     runs += [C.run_fixed_step(case, n, "heun") for n in heun_steps]
+    runs += [C.run_fixed_compiled(case, n, "euler") for n in compiled_steps]
+    runs += [C.run_fixed_compiled(case, n, "heun") for n in compiled_steps if n <= 1_000_000]
     log("  fixed steps done")
     if C.CANTERA is not None and case.name in C.CANTERA_CASES:
         runs += [C.run_cantera(case, rtol) for rtol in rtols]
@@ -106,6 +115,55 @@ def summary(cases, runs) -> str:
         if k == 0:
             lines.append("  ".join("-" * w for w in widths))
     return "\n".join(lines)
+
+
+def _err(r) -> float:
+    """The error a run is judged by: max relative error in p, and in the peak where there is one."""
+    return max(r.err_p, r.err_peak if r.err_peak is not None else 0.0)
+
+
+def _cheapest(runs, target):
+    ok = [r for r in runs if math.isfinite(r.wall) and _err(r) <= target]
+    return min(ok, key=lambda r: r.wall) if ok else None
+
+
+def acceptance(runs) -> str:
+    """Issue 6's acceptance figures from this run: the default against Cantera on the blowdown and fill cases,
+    and against fixed-step explicit schemes on the airbag, each at equal error (max relative error in p and in
+    the peak pressure <= target; the cheapest run of each method that reaches it)."""
+    out = ["Default (compiled DOP853) against Cantera ReactorNet at equal error; ratio = ventsim / Cantera "
+           "(<= 1: ventsim at least as fast):"]
+    for name in ("blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant"):
+        mine = [r for r in runs if r.case == name]
+        if not mine:
+            out.append(f"  {name:20s} not run (--cases)")
+            continue
+        for target in TARGETS:
+            a = _cheapest([r for r in mine if r.method == DEFAULT], target)
+            b = _cheapest([r for r in mine if r.method == "Cantera ReactorNet"], target)
+            if a is None or b is None:
+                out.append(f"  {name:20s} <= {target:.0e}: not reached by "
+                           f"{'ventsim' if a is None else 'Cantera (or Cantera not installed)'}")
+                continue
+            out.append(f"  {name:20s} <= {target:.0e}: ventsim {a.wall * 1e3:7.3f} ms (rtol {a.tol}, err "
+                       f"{_err(a):.1e}) / Cantera {b.wall * 1e3:7.3f} ms (rtol {b.tol}, err {_err(b):.1e}) "
+                       f"= {a.wall / b.wall:5.2f}")
+    out.append("Default against fixed-step explicit schemes on airbag_vented at equal error in the peak pressure "
+               "(fixed steps on the same compiled right-hand side, and on the Python one); ratio = fixed / ventsim "
+               "(>= 100 required):")
+    mine = [r for r in runs if r.case == "airbag_vented" and r.err_peak is not None]
+    for target in TARGETS if mine else ():
+        a = C.cheapest([r for r in mine if r.method == DEFAULT], target, "err_peak")
+        for m in ("fixed Euler (compiled)", "fixed Heun (compiled)", "fixed Euler", "fixed Heun"):
+            b = C.cheapest([r for r in mine if r.method == m], target, "err_peak")
+            if a is None or b is None:
+                best = min((r for r in mine if r.method == m), key=lambda r: r.err_peak, default=None)
+                got = "" if best is None else f" (best: {best.err_peak:.1e} at {best.tol}, {best.wall:.2f} s)"
+                out.append(f"  peak <= {target:.0e}: {m} not reached{got}")
+                continue
+            out.append(f"  peak <= {target:.0e}: {m} {b.wall * 1e3:8.1f} ms ({b.tol}, err {b.err_peak:.1e}) / "
+                       f"ventsim {a.wall * 1e3:.3f} ms (rtol {a.tol}, err {a.err_peak:.1e}) = {b.wall / a.wall:6.0f}x")
+    return "\n".join(out)
 
 
 def recommendation_data(cases, runs) -> str:
@@ -168,7 +226,8 @@ def plot(cases, runs, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     colors = {"DOP853": "tab:blue", "RK45": "tab:orange", "LSODA": "tab:green", "Radau": "tab:red",
-              "BDF": "tab:purple", "Euler": "0.45", "Heun": "tab:brown", "ReactorNet": "black"}
+              "BDF": "tab:purple", "Euler": "0.45", "Heun": "tab:brown", "ReactorNet": "black",
+              "(Python)": "tab:cyan"}
     ncol = 3
     nrow = math.ceil(len(cases) / ncol)
     fig, axes = plt.subplots(nrow, ncol, figsize=(5.2 * ncol, 4.2 * nrow), squeeze=False)
@@ -179,9 +238,10 @@ def plot(cases, runs, path: Path) -> None:
                    if r.method == m and math.isfinite(r.wall) and math.isfinite(r.err_p)]
             if not pts:
                 continue
-            key = m.split()[-1]
+            key = m.split()[1] if m.endswith("(compiled)") else m.split()[-1]
             style = "-" if m.startswith("ventsim") else "--" if m.startswith("scipy") else ":"
-            marker = "o" if m.startswith("ventsim") else "x" if m.startswith("scipy") else "s"
+            marker = ("o" if m.startswith("ventsim") else "x" if m.startswith("scipy")
+                      else "^" if m.endswith("(compiled)") else "s")
             lw = 2.2 if m == f"ventsim {case.scene.solver.method}" else 1.0
             ax.loglog(*zip(*pts), style, marker=marker, ms=3.5, lw=lw, color=colors.get(key, "k"), label=m)
         ax.set_title(f"{case.name}", fontsize=10)
@@ -198,8 +258,9 @@ def plot(cases, runs, path: Path) -> None:
                 handles.append(h)
                 labels.append(lab)
     fig.legend(handles, labels, loc="lower center", ncol=6, fontsize=8, frameon=False)
-    fig.suptitle("ventsim work-precision: error against wall time (solid: ventsim integrator, dashed: plain "
-                 "solve_ivp, dotted: fixed step / Cantera)", fontsize=11)
+    fig.suptitle("ventsim work-precision: error against wall time (solid: ventsim integrator, thick: the default; "
+                 "dashed: plain solve_ivp; dotted: fixed step (triangles: on the compiled RHS) / Cantera)",
+                 fontsize=10)
     fig.tight_layout(rect=(0, 0.07, 1, 0.96))
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp.png")
@@ -246,11 +307,11 @@ def main(argv=None) -> int:
         cases.append(case)
         print(f"\n{name}: reference = {case.reference}" + (f"; {case.reference_check}" if case.reference_check
                                                            else ""))
-        runs += run_case(case, rtols, euler, heun, log)
+        runs += run_case(case, rtols, euler, heun, log, QUICK_COMPILED_STEPS if args.quick else COMPILED_STEPS)
     print()
     print(C.format_table(runs))
     text = ["", "Cheapest run reaching each target (wall time of the solve @ tolerance):", summary(cases, runs), "",
-            "Data for the recommended default:", recommendation_data(cases, runs)]
+            acceptance(runs), "", "Data for the recommended default:", recommendation_data(cases, runs)]
     print("\n".join(text))
     out.mkdir(parents=True, exist_ok=True)
     write_csv(runs, out / "work_precision.csv")

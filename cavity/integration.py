@@ -4,6 +4,11 @@ The model is not known here: a system gives a right-hand side, the times where i
 (table breakpoints, start times: known in advance), and state events (a vent popping, a node touching) found by
 root finding on the dense output. The solver integrates up to each breakpoint or event and restarts after it,
 so no step ever straddles a discontinuity.
+
+Two paths run the same algorithm. A system that can lower itself to arrays (``compiled_solver()``, e.g. a plain
+``exchange.network.Network``) runs, with DOP853 (the default), in one numba call (:mod:`cavity.rk_compiled`,
+``exchange.compiled_solver``): the same steps, switches and restarts as solve_ivp's DOP853, 20–40× faster
+(docs/benchmarks.md). Any other system or method runs through ``solve_ivp``. ``Trajectory.path`` says which ran.
 """
 from __future__ import annotations
 
@@ -45,6 +50,10 @@ class SolverOptions:
         Largest step [s].
     max_steps : int
         Steps after which the run is declared stuck (no hang on a stiff or chattering scene).
+    compiled : bool or None
+        Run the compiled DOP853 path (:mod:`cavity.rk_compiled`; the system lowers itself with
+        ``compiled_solver()``): None (default) when the method is DOP853 and the system can be lowered, else the
+        Python path; True: require it (error if the system cannot be lowered); False: never.
     """
 
     method: str = "DOP853"
@@ -52,6 +61,7 @@ class SolverOptions:
     atol: object = 1e-12
     max_step: float = math.inf
     max_steps: int = 2_000_000
+    compiled: bool | None = None
 
     def __post_init__(self):
         if self.method not in METHODS:
@@ -69,9 +79,10 @@ class Trajectory:
     step_times: list = field(default_factory=list)
     events: list = field(default_factory=list)
     stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
-                                                 "restarts": 0, "events": 0})
+                                                 "restarts": 0, "events": 0, "path": "python"})
     last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
     stalls: int = 0  # events in a row at the same time
+    path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
 
     def __call__(self, t: float) -> np.ndarray:
         """State at time t (right limit at a breakpoint)."""
@@ -137,16 +148,22 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
         Has ``rhs(t, y) -> (n,) float``, ``breakpoints`` (iterable of times [s]), ``events() -> list`` of
         scipy event functions (``terminal`` set, ``direction`` as needed) valid for the current discrete state,
         ``on_event(t, y, index) -> (n,) float`` which applies the switch of event ``index`` (and may change what
-        ``events()`` returns), and ``describe(t, y) -> str`` for error messages.
+        ``events()`` returns), and ``describe(t, y) -> str`` for error messages. Optional:
+        ``begin_segment(t0, t1, y0)``, ``snapshot()``/``restore(mode)`` (its discrete state per segment) and
+        ``compiled_solver()`` (None, or an object whose ``run`` integrates the whole span compiled: see
+        :func:`_integrate_compiled`).
     y0 : (n,) float
         Initial unknowns.
     options : SolverOptions
     progress : bool
         Show a progress bar on stderr when the run takes more than a second.
     """
+    stops = sorted({float(b) for b in system.breakpoints if t0 < b < t1} | {t1})
+    fast = _compiled_system(system, options)
+    if fast is not None:
+        return _integrate_compiled(system, fast, y0, t0, stops, options)
     traj = Trajectory()
     bar = _Progress(t0, t1, progress)
-    stops = sorted({float(b) for b in system.breakpoints if t0 < b < t1} | {t1})
     t, y = float(t0), np.asarray(y0, dtype=float)
     try:
         for stop in stops:
@@ -155,6 +172,57 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
                 bar.update(t)
     finally:
         bar.close()
+    return traj
+
+
+def _compiled_system(system, options):
+    """The system lowered for the compiled path, or None when the Python path runs (see SolverOptions.compiled)."""
+    if options.compiled is False or (options.compiled is None and options.method != "DOP853"):
+        return None
+    lower = getattr(system, "compiled_solver", None)
+    fast = lower() if lower is not None else None
+    if fast is None and options.compiled:
+        raise SolverError(f"the compiled path cannot run {type(system).__name__}: "
+                          f"{getattr(system, 'compiled_unsupported', lambda: 'no compiled_solver()')()}")
+    if fast is not None and options.method != "DOP853":
+        raise SolverError(f"the compiled path is DOP853 only; got method {options.method!r}")
+    return fast
+
+
+_RTOL_FLOOR = 100 * float(np.finfo(float).eps)  # scipy's smallest rtol
+
+
+def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
+    """Run the compiled DOP853 path (the system's ``compiled_solver().run``) and wrap its records."""
+    from .rk_compiled import DenseSteps
+
+    rtol = max(options.rtol, _RTOL_FLOOR)
+    status, t, y, recs, segs, evs, st = fast.run(y0, t0, stops, rtol, options.atol, options.max_step,
+                                                 options.max_steps, SWITCH_NEAR_ZERO_PER_RTOL * rtol)
+    if status:  # the Python path's messages
+        state = system.describe(t, y)
+        raise SolverError({1: f"more than {options.max_steps} steps before t = {t:.9g} s; {state}",
+                           2: f"DOP853 stopped at t = {t:.9g} s: Required step size is less than spacing between "
+                              f"numbers.; {state}",
+                           3: f"the right-hand side failed near t = {t:.9g} s (no temperature found for a "
+                              f"cavity's internal energy); {state}",
+                           4: f"non-finite state at t = {t:.9g} s; {state}",
+                           5: f"switches keep firing at t = {t:.9g} s without progress; {state}"}[status])
+    traj = Trajectory(path="compiled")
+    for first, end, t_min, t_max, code in segs.tolist():
+        traj.segments.append(DenseSteps(recs[int(first):int(end)], t_min, t_max))
+        traj.modes.append(fast.segment_mode(code))
+    if traj.modes and system.snapshot() != traj.modes[-1]:
+        system.restore(traj.modes[-1])  # the discrete state at the end, as the Python path leaves it
+    traj.step_times = [float(t0)] + recs[:, 2].tolist()
+    labels = fast.labels
+    traj.events = [(te, labels[int(q)]) for te, q, _ in evs.tolist()]
+    rhs_calls, steps, restarts, events = st.tolist()
+    traj.stats.update(steps=steps, rhs_calls=rhs_calls, restarts=restarts, events=events, path="compiled")
+    if events:
+        te, q, d = evs[-1].tolist()
+        if segs[-1, 3] == te:
+            traj.last_event = (labels[int(q)], te, d)
     return traj
 
 

@@ -27,6 +27,14 @@ __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
 LEDGER_PER_EXCHANGE = 2  # mass, energy
 LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
 
+#: Relative pressure difference |Δp|/max(p_a, p_b) [-] below which a two-way pneumatic exchange is held closed
+#: ("equalised"): at Δp = 0 its law is a sliding mode (it pushes back from both sides, with a slope that makes the
+#: equalised state stiff for explicit steps), so once the two sides agree to this level the exchange carries no
+#: flow until the rest of the network drives them apart again.
+EQUALISED_BELOW = 1e-10
+#: |Δp|/max(p_a, p_b) [-] above which an equalised exchange opens again (100× the entry level: no chattering).
+RELEASED_ABOVE = 1e-8
+
 
 _LIQUID = np.ones(1)
 
@@ -95,14 +103,26 @@ class Network:
         self.popped = [False] * len(self.exchanges)
         self.holding_since = [None] * len(self.exchanges)
         self.area_at_activation = [None] * len(self.exchanges)  # set when each exchange opens
+        self.equalised = [False] * len(self.exchanges)  # two-way exchanges held closed at Δp ≈ 0
 
     def snapshot(self) -> tuple:
         """The discrete state (for reading results back on a segment)."""
-        return tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation)
+        return (tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation),
+                tuple(self.equalised))
 
     def restore(self, mode) -> None:
         if mode is not None:
-            self.popped, self.holding_since, self.area_at_activation = (list(m) for m in mode)
+            self.popped, self.holding_since, self.area_at_activation = (list(m) for m in mode[:3])
+            self.equalised = list(mode[3]) if len(mode) > 3 else [False] * len(self.exchanges)
+
+    def can_equalise(self, index: int) -> bool:
+        """Exchange ``index`` has an equalised mode: a pneumatic law between two gas cavities, or two-way to
+        ambient."""
+        ex = self.exchanges[index]
+        if ex.law.prescribed or not ex.law.pneumatic or not (ex.two_way or ex.downstream is not None):
+            return False
+        return all(getattr(self.cavities[i], "kind", "gas") == "gas" for i in (ex.upstream, ex.downstream)
+                   if i is not None)
 
     @property
     def size(self) -> int:
@@ -154,13 +174,22 @@ class Network:
         for j, ex in enumerate(self.exchanges):
             a = points[ex.upstream]
             b = self._ambient_point if ex.downstream is None else points[ex.downstream]
-            mdot = ex.mass_flow(a, b, self.exchange_area(j, t), t)
+            mdot = 0.0 if self.equalised[j] else ex.mass_flow(a, b, self.exchange_area(j, t), t)
             flows.append((mdot, a if mdot >= 0.0 else b))
         return flows
 
     def begin_segment(self, t0: float, t1: float, y0=None) -> None:
-        """The integrator is about to integrate over [t0, t1] from y0; no breakpoint lies inside."""
+        """The integrator is about to integrate over [t0, t1] from y0; no breakpoint lies inside.
+
+        A two-way pneumatic exchange whose sides agree to :data:`EQUALISED_BELOW` at t0 starts the segment
+        equalised (held closed); its release switch watches for the network driving them apart.
+        """
         self._segment_end = t1
+        if y0 is None:
+            return
+        for j in range(len(self.exchanges)):
+            if not self.equalised[j] and self.can_equalise(j) and self._dp_relative(t0, y0, j) < EQUALISED_BELOW:
+                self.equalised[j] = True
 
     def input_time(self, t: float) -> float:
         """The time at which to read tabulated inputs: at the end of a segment, its left limit.
@@ -214,13 +243,32 @@ class Network:
 
 
     # hooks used by cavity.integration.integrate
+    def compiled_solver(self):
+        """This network lowered to arrays for the compiled DOP853 path (:mod:`exchange.compiled`), or None when a
+        part of it is not supported there (then the integrator runs the Python path). Built once and kept."""
+        key = (type(self), self.gas, self.cavities, self.exchanges, self.ambient)
+        cached = self.__dict__.get("_compiled")
+        if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])):
+            from .compiled import lower
+
+            cached = key + (lower(self),)
+            self.__dict__["_compiled"] = cached
+        return cached[-1]
+
+    def compiled_unsupported(self) -> str | None:
+        """Why :meth:`compiled_solver` is None (None: it is supported)."""
+        from .compiled import unsupported_reason
+
+        return unsupported_reason(self)
+
     def events(self) -> list:
         """Switch functions valid in the current discrete state.
 
         Per exchange: choking (p_low − p_crit, pneumatic laws), because the orifice law's second derivative jumps
-        where flow chokes; for an outflow-only vent, Δp = 0, where its flow stops (a kink). A two-way exchange needs
-        no switch at Δp = 0: its laws are C¹ through zero there (the orifice law is linear below Δp/p = 1e-4), and
-        a switch would fire on every overshoot of the equalised (sliding) state; and, for a vent
+        where flow chokes; for an outflow-only vent, Δp = 0, where its flow stops (a kink). A two-way pneumatic
+        exchange has no switch at Δp = 0 (its laws are C¹ there; a switch would fire on every overshoot of the
+        sliding state) but an equalised mode: "equalise" fires when |Δp|/p falls to :data:`EQUALISED_BELOW` and
+        holds it closed, "release" when it rises to :data:`RELEASED_ABOVE` and opens it again; and, for a vent
         with a pop pressure not yet open, the pop crossing, or while holding, the drop below it and the end of
         the hold time.
         """
@@ -231,6 +279,10 @@ class Network:
                     out.append(_labelled(lambda t, y, j=j: self._choke_switch(t, y, j), f"{ex.name}:choke"))
                 if ex.downstream is None and not ex.two_way:  # one-way: the flow stops at Δp = 0 (a kink)
                     out.append(_labelled(lambda t, y, j=j: self._dp_switch(t, y, j), f"{ex.name}:reversal"))
+                elif self.can_equalise(j):  # two-way: held closed once equalised, opened when driven apart
+                    kind, level = ("release", RELEASED_ABOVE) if self.equalised[j] else ("equalise", EQUALISED_BELOW)
+                    out.append(_labelled(lambda t, y, j=j, c=level: self._dp_relative(t, y, j) / c - 1.0,
+                                         f"{ex.name}:{kind}"))
             act = ex.activation
             if act is None or act.pop_pressure is None or self.popped[j]:
                 continue
@@ -248,6 +300,11 @@ class Network:
         pa = states[ex.upstream].pressure
         pb = self.ambient.pressure if ex.downstream is None else states[ex.downstream].pressure
         return states, pa, pb
+
+    def _dp_relative(self, t, y, j) -> float:
+        """|p_a − p_b| / max(p_a, p_b) of exchange j [-]."""
+        _, pa, pb = self._pressures(t, y, j)
+        return abs(pa - pb) / max(pa, pb)
 
     def _dp_switch(self, t, y, j):
         _, pa, pb = self._pressures(t, y, j)
@@ -272,6 +329,9 @@ class Network:
         """Apply a switch: a pop crossing starts the hold (or opens at once), a drop re-arms, a hold end opens."""
         name, _, kind = label.rpartition(":")
         j = next((k for k, ex in enumerate(self.exchanges) if ex.name == name), None)
+        if j is not None and kind in ("equalise", "release"):
+            self.equalised[j] = kind == "equalise"
+            return y
         if j is None or not kind.startswith("pop"):
             return y
         act = self.exchanges[j].activation

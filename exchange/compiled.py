@@ -1,0 +1,186 @@
+"""Lowering a :class:`exchange.network.Network` to flat arrays for the compiled integrator.
+
+:func:`lower` returns a :class:`CompiledNetwork` when every part of the network is of a supported kind, else
+``None`` with the reason in :func:`unsupported_reason`; :func:`cavity.integration.integrate` then runs the Python
+path. Supported: a plain ``Network`` (not a subclass), ideal-gas mixtures with piecewise cp polynomials,
+adiabatic, isothermal or heat-loss cavities with fixed, table or scaled-mesh volumes, mass/temperature-table
+inflators, orifice exchanges (constant Cd) to ambient (one- or two-way) or between cavities, with an optional
+time window and amplitude table (no pop pressure, no delta area).
+
+The arrays are described in :mod:`exchange.compiled_rhs`.
+"""
+from __future__ import annotations
+
+import importlib.util
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from cavity.inflator import MassTemperatureInflator
+from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
+
+from .laws import OrificeLaw
+
+__all__ = ["CompiledNetwork", "lower", "unsupported_reason"]
+
+ENERGY = {"adiabatic": 0, "isothermal": 1, "heat_loss": 2}
+
+
+@dataclass
+class CompiledNetwork:
+    """A network as arrays, with its switch functions (kind 0: choke, 1: one-way reversal) and their labels."""
+
+    model: tuple
+    kinds: np.ndarray
+    exchanges: np.ndarray
+    labels: list
+    T_initial: np.ndarray
+    network: object
+    _modes: dict = field(default_factory=dict, repr=False)
+
+    def run(self, y0, t0: float, stops, rtol: float, atol, max_step: float, max_steps: int, near: float):
+        """One call of :func:`exchange.compiled_solver.solve` from the network's current discrete state; returns
+        its tuple (see there)."""
+        from .compiled_solver import solve
+
+        model = self.model
+        model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
+        eq = model[20]
+        for j, e in enumerate(self.network.equalised):
+            eq[j] = e
+        y0 = np.asarray(y0, dtype=float)
+        if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
+            atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
+        return solve(model, self.kinds, self.exchanges, y0, float(t0), np.array(stops, dtype=float), float(rtol),
+                     atol, float(max_step), int(max_steps), float(near))
+
+    def segment_mode(self, code) -> tuple:
+        """The network's snapshot during a segment whose equalised exchanges are the bits of ``code``."""
+        base, code = self.network.snapshot()[:3], int(code)
+        key = (base, code)
+        if key not in self._modes:
+            self._modes[key] = base + (tuple(bool(code >> j & 1) for j in range(len(self.network.exchanges))),)
+        return self._modes[key]
+
+
+def unsupported_reason(net) -> str | None:
+    """Why ``net`` cannot be lowered (None: it can)."""
+    from .network import Network
+
+    if importlib.util.find_spec("numba") is None:
+        return "numba is not installed"
+    if type(net) is not Network:
+        return f"{type(net).__name__} is not a plain Network"
+    for cav in net.cavities:
+        if getattr(cav, "kind", "gas") != "gas" or cav.energy not in ENERGY:
+            return f"cavity {cav.name}: kind or energy model"
+        if not isinstance(cav.volume, (FixedVolume, TableVolume, ScaledMeshVolume)):
+            return f"cavity {cav.name}: volume model {type(cav.volume).__name__}"
+        for inf in cav.inflators:
+            if type(inf) is not MassTemperatureInflator or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
+                return f"inflator {inf.name}: {type(inf).__name__}"
+    for ex in net.exchanges:
+        if type(ex.law) is not OrificeLaw or not isinstance(ex.law.discharge_coefficient, (int, float)):
+            return f"exchange {ex.name}: law {type(ex.law).__name__} (only orifice with a constant Cd)"
+        act = ex.activation
+        if act is not None and (act.pop_pressure is not None or act.delta_area):
+            return f"exchange {ex.name}: pop pressure or delta area"
+    return None
+
+
+class _Tables:
+    def __init__(self):
+        self.x, self.y, self.index = [], [], []
+
+    def add(self, table) -> int:
+        self.index.append((len(self.x), len(table.x), 1 if table.extrapolation == "linear" else 0))
+        self.x += list(table.x)
+        self.y += list(table.y)
+        return len(self.index) - 1
+
+    def arrays(self):
+        if not self.index:
+            self.add(type("T", (), {"x": (0.0,), "y": (0.0,), "extrapolation": "constant"})())
+        return (np.array(self.x, dtype=float), np.array(self.y, dtype=float),
+                np.array(self.index, dtype=np.int64).reshape(-1, 3))
+
+
+def _cavities(net, tables):
+    ci, cf = [], []
+    for cav, k, c in zip(net.cavities, net.offsets, net._ledger):
+        vol = cav.volume
+        kind = 0 if isinstance(vol, FixedVolume) else 1 if isinstance(vol, TableVolume) else 2
+        tab = tables.add(vol.table) if kind == 1 else tables.add(vol.scale) if kind == 2 else -1
+        size = vol.volume if kind == 0 else vol.mesh_volume if kind == 2 else 0.0
+        hA = cav.heat_transfer_coefficient * cav.heat_transfer_area
+        ci.append((k, ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses)))
+        cf.append((cav.initial_temperature, cav.added_volume, cav.minimum_volume, hA, cav.ambient_temperature,
+                   size))
+    return np.array(ci, dtype=np.int64), np.array(cf, dtype=float)
+
+
+def _inflators(net, tables, ns, nr):
+    ii, ifl, irows = [], [], []
+    for i, cav in enumerate(net.cavities):
+        for inf in cav.inflators:
+            ii.append((i, tables.add(inf.mass_flow_table), tables.add(inf.temperature_table)))
+            ifl.append([inf.start, inf.scale, inf.gas.mass] + list(np.asarray(inf.mass_fractions, dtype=float)))
+            irows.append(np.array(inf.gas.rows, dtype=float))
+    return (np.array(ii, dtype=np.int64).reshape(-1, 3), np.array(ifl, dtype=float).reshape(-1, 3 + ns),
+            np.array(irows, dtype=float).reshape(-1, nr, 7))
+
+
+def _exchanges(net, tables):
+    ei, ef = [], []
+    for ex in net.exchanges:
+        act = ex.activation
+        amp = tables.add(act.amplitude) if act is not None and act.amplitude is not None else -1
+        window = act is not None
+        ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
+                   int(window), int(net.can_equalise(len(ei)))))
+        ef.append((ex.area, float(ex.law.discharge_coefficient), act.open_time if window else 0.0,
+                   act.close_time if window else math.inf))
+    return np.array(ei, dtype=np.int64).reshape(-1, 6), np.array(ef, dtype=float).reshape(-1, 4)
+
+
+def _switches(net):
+    kinds, js, labels = [], [], []
+    for j, ex in enumerate(net.exchanges):
+        kinds.append(0)
+        js.append(j)
+        labels.append(f"{ex.name}:choke")
+        if ex.downstream is None and not ex.two_way:
+            kinds.append(1)
+            js.append(j)
+            labels.append(f"{ex.name}:reversal")
+        elif net.can_equalise(j):
+            kinds += [2, 3]
+            js += [j, j]
+            labels += [f"{ex.name}:equalise", f"{ex.name}:release"]
+    return np.array(kinds, dtype=np.int64), np.array(js, dtype=np.int64), labels
+
+
+def lower(net) -> CompiledNetwork | None:
+    """The network as arrays for :func:`exchange.compiled_solver.solve`, or None if a part is not supported."""
+    if unsupported_reason(net) is not None:
+        return None
+    gas = net.gas
+    per_range, linear = gas._per_range
+    rows = np.array(per_range, dtype=float).transpose(1, 0, 2).copy()  # (ns, nr, 7)
+    ns, nr = rows.shape[0], rows.shape[1]
+    tables = _Tables()
+    ci, cf = _cavities(net, tables)
+    ii, ifl, irows = _inflators(net, tables, ns, nr)
+    ei, ef = _exchanges(net, tables)
+    tx, ty, ti = tables.arrays()
+    a = net.ambient.point()
+    amb = np.array([a.p, a.T, a.rho, a.R, a.gamma, a.h] + list(np.asarray(a.mass_fractions, dtype=float)))
+    nc = len(net.cavities)
+    T0 = np.array([c.initial_temperature for c in net.cavities], dtype=float)
+    model = (rows, np.array(gas.breaks, dtype=float), np.array(linear, dtype=np.int64),
+             np.asarray(gas.molar_masses, dtype=float), tx, ty, ti, ci, cf, ii, ifl, irows, ei, ef, amb,
+             int(net.ledger_offset), T0.copy(), np.zeros((nc, 9 + ns)), np.zeros(ns), np.zeros(7),
+             np.zeros(len(net.exchanges), dtype=np.int64))
+    kinds, js, labels = _switches(net)
+    return CompiledNetwork(model, kinds, js, labels, T0, net)

@@ -1,0 +1,154 @@
+"""The compiled DOP853 path (exchange.compiled*, cavity.rk_compiled) against the Python path it replaces.
+
+Naive-vs-fast pairs: the jitted orifice law against exchange.orifice, the jitted right-hand side against
+Network.rhs, and whole runs of every library case and hard scene both paths can run (same steps, same events,
+the same pressures to round-off). Plus: which path ran, the automatic fallback, and the step budget.
+"""
+import copy
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cases.build import build_model
+from cases.library import CASES, HERE
+from cases.scene import load_scene, scene_from_dict
+from cavity.integration import SolverError, integrate
+from exchange import orifice
+from exchange.compiled_rhs import orifice_mass_flow
+from exchange.compiled_solver import rhs as compiled_rhs
+from tests.scenes import tank
+
+LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
+             "airbag_vented"]
+
+
+def model_of(name):
+    return build_model(load_scene(HERE / CASES[name]))
+
+
+def both_paths(model):
+    """(compiled trajectory, Python trajectory) of a model at its own options."""
+    net, out = model.network, []
+    for compiled in (True, False):
+        y0 = net.initial_state()
+        out.append(integrate(net, y0, 0.0, model.scene.time.end, replace(model.options, compiled=compiled)))
+    return out
+
+
+def pressures(model, traj, times):
+    net = model.network
+    rows = []
+    for t, y in zip(times, traj.sample(times)):
+        net.restore(traj.mode_at(t))
+        rows.append([s.pressure for s in net.states(t, y)])
+    return np.array(rows)
+
+
+@pytest.mark.parametrize("p_down", [1.0e5, 1.5e5, 1.9e5, 2.0e5 - 10.0, 2.0e5 - 1e-3, 2.0e5, 2.5e5])
+@pytest.mark.parametrize("gamma", [1.3, 1.4, 1.667])
+def test_jitted_orifice_law_equals_the_pure_function(p_down, gamma):
+    args = (2.0e5, 320.0, p_down, 287.0, gamma, 1.3e-4, 0.7)
+    assert orifice_mass_flow(*args) == pytest.approx(orifice.orifice_mass_flow(*args), rel=1e-14, abs=0.0)
+
+
+@pytest.mark.parametrize("name", ["blowdown_subsonic", "compression_mesh", "airbag_vented"])
+def test_jitted_right_hand_side_equals_network_rhs(name):
+    model = model_of(name)
+    net, fast = model.network, model.network.compiled_solver()
+    assert fast is not None
+    y0 = net.initial_state()
+    traj = integrate(net, y0, 0.0, model.scene.time.end, replace(model.options, compiled=False))
+    for t in np.linspace(0.0, model.scene.time.end, 23)[1:-1]:
+        y = traj(t)
+        net.begin_segment(t, math.inf)
+        expected = net.rhs(t, y)
+        got = np.empty_like(y)
+        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
+        assert compiled_rhs(fast.model, t, y, got, math.inf)
+        scale = np.abs(expected).max()
+        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * scale), (t, got - expected)
+
+
+@pytest.mark.parametrize("name", LOWERABLE)
+def test_compiled_path_matches_the_python_path_on_the_library(name):
+    model = model_of(name)
+    fast_traj, slow_traj = both_paths(model)
+    assert (fast_traj.path, slow_traj.path) == ("compiled", "python")
+    assert [label for _, label in fast_traj.events] == [label for _, label in slow_traj.events]
+    np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=1e-9)
+    assert abs(fast_traj.stats["steps"] - slow_traj.stats["steps"]) <= 2
+    times = np.asarray(model.output_times)
+    p_fast, p_slow = pressures(model, fast_traj, times), pressures(model, slow_traj, times)
+    assert np.max(np.abs(p_fast / p_slow - 1.0)) <= 10 * model.options.rtol
+
+
+def test_the_default_path_is_compiled_and_says_so():
+    model = model_of("blowdown_choked")
+    net = model.network
+    assert model.options.compiled is None and model.options.method == "DOP853"
+    traj = integrate(net, net.initial_state(), 0.0, 0.5, model.options)
+    assert traj.path == "compiled"
+    assert traj.stats["steps"] == 3 and traj.stats["rhs_calls"] == 47  # as solve_ivp's DOP853 (docs/benchmarks.md)
+    other = integrate(net, net.initial_state(), 0.0, 0.5, replace(model.options, method="RK45"))
+    assert other.path == "python"
+
+
+def two_way_scene(folder: Path, p0: float, end: float):
+    data = tank(pressure=p0)
+    data["time"] = {"end": end, "output_interval": 0.01}
+    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-3 if p0 < 1e5 else 1e-4, "two_way": True}]
+    return build_model(scene_from_dict(data, folder / "scene.toml"))
+
+
+@pytest.mark.parametrize("p0, end", [(3e5, 20.0), (100.0, 1.0)])
+def test_equalised_mode_is_the_same_on_both_paths(tmp_path, p0, end):
+    model = two_way_scene(tmp_path, p0, end)
+    fast_traj, slow_traj = both_paths(model)
+    labels = [label for _, label in slow_traj.events]
+    assert labels == [label for _, label in fast_traj.events] and labels[-1] == "vent:equalise"
+    np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=1e-6)
+    assert fast_traj.modes[-1][3] == (True,) and slow_traj.modes[-1][3] == (True,)
+    times = np.linspace(0.0, end, 201)
+    assert np.max(np.abs(pressures(model, fast_traj, times) / pressures(model, slow_traj, times) - 1)) < 1e-8
+
+
+def test_release_reopens_an_equalised_exchange(tmp_path):
+    """A tank at ambient (equalised from the start) is pressurised by an inflator from 10 ms: the vent opens."""
+    (tmp_path / "late.csv").write_text("t,mdot\n0,0\n0.01,0\n0.011,0.1\n0.05,0.1\n")
+    data = tank()
+    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "late.csv",
+                                      "temperature": 300.0, "gas": {"N2": 1.0}}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4, "two_way": True}]
+    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    fast_traj, slow_traj = both_paths(model)
+    for traj in (fast_traj, slow_traj):
+        assert [label for _, label in traj.events][:1] == ["vent:release"]
+        assert 0.01 < traj.events[0][0] < 0.011
+        assert traj.modes[0][3] == (True,)
+    times = np.linspace(0.0, 0.1, 101)
+    assert np.max(np.abs(pressures(model, fast_traj, times) / pressures(model, slow_traj, times) - 1)) < 1e-8
+
+
+def test_unsupported_networks_fall_back_to_python(tmp_path):
+    data = tank(pressure=2e5)
+    data["exchange"] = [{"name": "vent", "from": "tank", "law": "linear_resistance", "conductance": 1e-6,
+                         "area": 1e-4}]
+    model = build_model(scene_from_dict(copy.deepcopy(data), tmp_path / "scene.toml"))
+    net = model.network
+    assert net.compiled_solver() is None and "law" in net.compiled_unsupported()
+    assert integrate(net, net.initial_state(), 0.0, 0.1, model.options).path == "python"
+    with pytest.raises(SolverError, match="compiled path cannot run"):
+        integrate(net, net.initial_state(), 0.0, 0.1, replace(model.options, compiled=True))
+
+
+def test_step_budget_inside_one_segment_on_the_compiled_path(tmp_path):
+    data = tank(pressure=5e5)
+    data["time"]["end"] = 2.0
+    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4}]
+    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    net = model.network
+    with pytest.raises(SolverError, match=r"more than 3 steps before t = [0-9.e+-]+ s; tank: mass"):
+        integrate(net, net.initial_state(), 0.0, 2.0, replace(model.options, max_steps=3, compiled=True))
