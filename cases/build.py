@@ -61,7 +61,8 @@ def build_model(scene: Scene) -> Model:
         network = _scene_network(scene, gas, cavities, exchanges, ambient, geo)
     dt = scene.time.output_interval or t_end / 500.0
     n = max(2, int(math.floor(t_end / dt + 1e-9)) + 1)
-    times = np.unique(np.append(np.linspace(0.0, (n - 1) * dt, n), t_end))
+    grid = np.linspace(0.0, (n - 1) * dt, n)
+    times = np.append(grid[grid < t_end - 1e-9 * dt], t_end)  # no second row a rounding error before/after t_end
     s = scene.solver
     options = SolverOptions(method=s.method, rtol=s.rtol, atol=(s.atol or s.rtol / 100) * _scales(network, t_end),
                             max_step=s.max_step or math.inf)
