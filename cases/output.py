@@ -56,7 +56,8 @@ def write_summary(path: Path, summary: dict) -> None:
 
 
 def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "") -> None:
-    """Pressure, temperature and exchange mass flows against time, one panel each (matplotlib, Agg)."""
+    """Pressure, temperature, exchange mass flows and, where the scene has them, body displacements and peak contact
+    pressure against time, one panel each (matplotlib, Agg)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -65,7 +66,9 @@ def plot_history(path: Path, columns: list, history: np.ndarray, title: str = ""
     t = history[:, 0]
     panels = [("pressure [Pa]", "pressure [kPa]", 1e-3), ("temperature [K]", "temperature [K]", 1.0),
               ("mass_flow [kg/s]", "mass flow [kg/s]", 1.0)]
-    fig, axes = plt.subplots(len(panels), 1, figsize=(8, 8), sharex=True)
+    optional = [(".displacement [m]", "body displacement [mm]", 1e3), ("max_cpress [Pa]", "max CPRESS [kPa]", 1e-3)]
+    panels += [p for p in optional if any(c.endswith(p[0]) for c in columns)]  # scenes with bodies, contact
+    fig, axes = plt.subplots(len(panels), 1, figsize=(8, 2.7 * len(panels)), sharex=True)
     for ax, (suffix, label, factor) in zip(axes, panels):
         for i, c in enumerate(columns):
             if c.endswith(suffix):
