@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq
 
 from exchange.network import Network, _labelled
 
@@ -95,7 +96,37 @@ class SceneNetwork(Network):
             c = self.contact
             if c is not None and c.hard and y[self.body_offset + 1] == 0.0 and c.held_sigma(0.0):
                 self.held = self.reaction(0.0, y) > 0.0
+            elif c is not None and not c.hard and y[self.body_offset + 1] == 0.0:
+                y[self.body_offset] = self.rest_position(y)
         return y
+
+    def rest_position(self, y) -> float:
+        """Displacement s [m] at which a body at rest on a penalty or softened seat is in static equilibrium.
+
+        A body that starts at rest touching its seat while the other forces push it in (a preloaded poppet) starts
+        at the overclosure that carries them, so it does not ring on the contact spring; otherwise 0. The root of
+        the net force F(s) = F_applied(s) + m·g + F_seat(s, v=0) is bracketed by doubling steps into the seat and
+        found by Brent's method to round-off.
+        """
+        k, m, c = self.body_offset, self.body.motion, self.contact
+        sigma = c.held_sigma(0.0)  # the seat pushes the body along +sigma; 0: no closed node at s = 0
+        y = np.array(y, dtype=float)
+
+        def net(s):
+            y[k] = s
+            return self.applied_force(y, self.states(0.0, y)) + m.mass * m.gravity + c.force(s, 0.0)
+
+        if sigma == 0.0 or net(0.0) * sigma >= 0.0:
+            return 0.0
+        inside, step = 0.0, 1e-12 * c.size
+        while net(-sigma * step) * sigma < 0.0:
+            inside, step = step, 2.0 * step
+            if step > c.size:
+                raise ValueError(f"contact {c.name!r}: the seat cannot carry the forces pressing {c.body!r} into it "
+                                 f"within an overclosure of {c.size:.3g} m (stiffness too low?)")
+        s0 = float(brentq(net, -sigma * inside, -sigma * step, xtol=1e-15 * c.size, rtol=4 * np.finfo(float).eps))
+        net(s0)  # leaves the body state at s0
+        return s0
 
     @property
     def breakpoints(self) -> tuple:

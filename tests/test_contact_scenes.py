@@ -58,6 +58,20 @@ def test_static_poppet_on_a_stiff_critically_damped_penalty_seat_settles_to_forc
     assert np.max(np.abs(cp / (force / SEAT_AREA) - 1.0)) <= 1e-9
 
 
+@pytest.mark.parametrize("law", [{"pressure_overclosure": "linear", "stiffness": 1e12},
+                                 {"pressure_overclosure": "exponential", "clearance": 1e-5, "pressure": 1e5}])
+def test_preloaded_poppet_on_a_soft_seat_starts_at_rest_in_equilibrium(law):
+    """No damping: a poppet started at zero overclosure would ring for ever; it starts where the seat carries F."""
+    force = 12.5
+    res = run_dict(poppet_scene(law, preload=force, end=0.005))
+    s = res.column("poppet.displacement")
+    assert np.ptp(s) <= 1e-12 * abs(s[0]) and res.column("poppet.velocity") == pytest.approx(0.0, abs=1e-15)
+    assert np.all(res.contact["status"] == STATUS_CODES["closed"])
+    assert np.max(np.abs(res.contact["cpress"] / (force / SEAT_AREA) - 1.0)) <= 1e-9
+    if law["pressure_overclosure"] == "linear":  # overclosure h = F / (k A)
+        assert abs(s[0]) == pytest.approx(force / (1e12 * SEAT_AREA), rel=1e-9)
+
+
 @pytest.mark.parametrize("zeta", [0.0, 0.03, 0.3])
 def test_dropped_body_rebounds_with_damped_oscillator_restitution(zeta):
     """A 10 g body at 1.5 m/s enters a linear-penalty seat with critical fraction ζ, gravity off: it leaves
