@@ -63,19 +63,30 @@ def pressure_at(model: Model, traj: Trajectory, i: int, t: float) -> float:
     return model.network.states(t, traj(t))[i].pressure
 
 
-def peak_pressure(model: Model, traj: Trajectory, i: int) -> tuple[float, float]:
-    """Largest pressure of cavity i and its time, refined on the dense output (independent of output times)."""
-    ts = np.unique(np.concatenate([traj.step_times, [s.t_min for s in traj.segments], [traj.t_final]]))
-    ps = np.array([pressure_at(model, traj, i, t) for t in ts])
+def peak_candidates(traj: Trajectory) -> np.ndarray:
+    """Times where a pressure peak is looked for [s]: every step end, segment start and the final time."""
+    return np.unique(np.concatenate([traj.step_times, [s.t_min for s in traj.segments], [traj.t_final]]))
+
+
+def refine_peak(ts: np.ndarray, ps: np.ndarray, pressure) -> tuple[float, float]:
+    """Largest pressure [Pa] and its time [s]: the largest of ``ps`` at ``ts``, refined between its neighbours
+    by a bounded scalar search on ``pressure(t)`` [Pa]."""
     k = int(np.argmax(ps))
     best = (float(ps[k]), float(ts[k]))
     lo, hi = ts[max(k - 1, 0)], ts[min(k + 1, len(ts) - 1)]
     if hi > lo:
-        res = minimize_scalar(lambda t: -pressure_at(model, traj, i, t), bounds=(lo, hi), method="bounded",
+        res = minimize_scalar(lambda t: -pressure(t), bounds=(lo, hi), method="bounded",
                               options={"xatol": 1e-14 * max(1.0, hi)})
         if -res.fun > best[0]:
             best = (float(-res.fun), float(res.x))
     return best
+
+
+def peak_pressure(model: Model, traj: Trajectory, i: int) -> tuple[float, float]:
+    """Largest pressure of cavity i and its time, refined on the dense output (independent of output times)."""
+    ts = peak_candidates(traj)
+    ps = np.array([pressure_at(model, traj, i, t) for t in ts])
+    return refine_peak(ts, ps, lambda t: pressure_at(model, traj, i, t))
 
 
 def mass_balance(model: Model, y0, y1) -> dict:
@@ -98,6 +109,62 @@ def mass_balance(model: Model, y0, y1) -> dict:
     return out
 
 
+def compiled_readback(model: Model, traj: Trajectory):
+    """When ``traj`` ran on the compiled path: ``read(times) -> rows or None``, its history at ``times`` [s]
+    (columns of :func:`history_columns`) in one compiled call (:mod:`exchange.compiled_history`), with
+    ``read.peaks(ts)``, :func:`exchange.compiled_peak.peaks` over the candidate times ``ts``; else None."""
+    if traj.path != "compiled" or contact_columns(model):
+        return None
+    fast = model.network.compiled_solver()
+    if fast is None:
+        return None
+    from exchange.compiled_history import equalised_per_segment, history
+    from exchange.compiled_peak import peaks
+
+    eqs = equalised_per_segment(traj.modes, len(model.network.exchanges))
+
+    def read(times):
+        return history(fast, traj, times, eqs)
+
+    read.peaks = lambda ts: peaks(fast, traj, ts)
+    return read
+
+
+def history_rows(model: Model, traj: Trajectory, times, readback=None) -> np.ndarray:
+    """The history at ``times`` [s] (columns of :func:`history_columns`): one compiled call with a
+    :func:`compiled_readback`, else (or if that fails) row by row with :func:`quantities`."""
+    rows = readback(times) if readback is not None else None
+    if rows is not None:
+        return rows
+    ys = traj.sample(times)
+    return np.array([quantities(model, t, y, traj.mode_at(t)) for t, y in zip(times, ys)])
+
+
+def compiled_cavity_values(model: Model, traj: Trajectory, readback):
+    """(peaks [(p [Pa], t [s])], finals [(p [Pa], T [K], m [kg])]) per cavity from a :func:`compiled_readback`,
+    or None if it fails (as :func:`peak_pressure` and the cavity states at the end time)."""
+    peaks, last = readback.peaks(peak_candidates(traj)), readback([model.scene.time.end])
+    if peaks is None or last is None:
+        return None
+    return peaks, [tuple(float(v) for v in last[0, 1 + 4 * i:4 + 4 * i]) for i in range(len(model.network.cavities))]
+
+
+def cavity_summary(model: Model, traj: Trajectory, y1, readback=None) -> dict:
+    """Per cavity: peak pressure [Pa] and its time [s], final pressure [Pa], temperature [K] and mass [kg]."""
+    net, t_end, out = model.network, model.scene.time.end, {}
+    fast = compiled_cavity_values(model, traj, readback) if readback is not None else None
+    for i, cav in enumerate(net.cavities):
+        if fast is not None:
+            (p, tp), (p1, T1, m1) = fast[0][i], fast[1][i]
+        else:
+            p, tp = peak_pressure(model, traj, i)
+            s = net.states(t_end, y1)[i]
+            p1, T1, m1 = s.pressure, s.temperature, s.mass if s.mixture is None else s.mixture.mass
+        out[cav.name] = {"peak pressure [Pa]": p, "peak pressure time [s]": tp, "final pressure [Pa]": p1,
+                         "final temperature [K]": T1, "final mass [kg]": m1}
+    return out
+
+
 def run(model: Model, *, progress: bool = False) -> Results:
     """Integrate a built model and reduce it."""
     net = model.network
@@ -106,23 +173,15 @@ def run(model: Model, *, progress: bool = False) -> Results:
     start = time.perf_counter()
     traj = integrate(net, y0, 0.0, t_end, model.options, progress=progress)
     wall = time.perf_counter() - start
-    ys = traj.sample(model.output_times)
-    history = np.array([quantities(model, t, y, traj.mode_at(t)) for t, y in zip(model.output_times, ys)])
+    readback = compiled_readback(model, traj)
+    history = history_rows(model, traj, model.output_times, readback)
     net.restore(traj.modes[-1])
     y1 = traj(t_end)
     summary = {"title": model.scene.title, "scene": str(model.scene.path), "end time [s]": t_end,
-               "cavities": {}, "mass balance": mass_balance(model, y0, y1),
+               "cavities": cavity_summary(model, traj, y1, readback), "mass balance": mass_balance(model, y0, y1),
                "solver": {"method": model.options.method, "rtol": model.options.rtol, **traj.stats,
                           "wall time [s]": wall, "event log": [[t, label] for t, label in traj.events]},
                "modelled": model.modelled}
-    for i, cav in enumerate(net.cavities):
-        p, tp = peak_pressure(model, traj, i)
-        final = net.states(t_end, y1)[i]
-        summary["cavities"][cav.name] = {"peak pressure [Pa]": p, "peak pressure time [s]": tp,
-                                         "final pressure [Pa]": final.pressure,
-                                         "final temperature [K]": final.temperature,
-                                         "final mass [kg]": final.mass if final.mixture is None
-                                         else final.mixture.mass}
     if model.geometry is not None:
         summary["blockage"] = blockage_summary(model, traj, history)
         if getattr(net, "body", None) is not None:

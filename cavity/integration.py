@@ -83,6 +83,9 @@ class Trajectory:
     last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
     stalls: int = 0  # events in a row at the same time
     path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
+    #: compiled path: (step records, segment table) as returned by the compiled solver, read back in one call by
+    #: exchange.compiled_history
+    compiled_records: tuple | None = field(default=None, repr=False)
 
     def __call__(self, t: float) -> np.ndarray:
         """State at time t (right limit at a breakpoint)."""
@@ -208,7 +211,7 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
                               f"cavity's internal energy); {state}",
                            4: f"non-finite state at t = {t:.9g} s; {state}",
                            5: f"switches keep firing at t = {t:.9g} s without progress; {state}"}[status])
-    traj = Trajectory(path="compiled")
+    traj = Trajectory(path="compiled", compiled_records=(recs, segs))
     for first, end, t_min, t_max, code in segs.tolist():
         traj.segments.append(DenseSteps(recs[int(first):int(end)], t_min, t_max))
         traj.modes.append(fast.segment_mode(code))

@@ -2,7 +2,10 @@
 
 Naive-vs-fast pairs: the jitted orifice law against exchange.orifice, the jitted right-hand side against
 Network.rhs, and whole runs of every library case and hard scene both paths can run (same steps, same events,
-the same pressures to round-off). Plus: which path ran, the automatic fallback, and the step budget.
+the same pressures to round-off), and the history read back in one compiled call (exchange.compiled_history,
+exchange.compiled_peak) against the row-by-row Python history, column by column (library cases, a two-way vent
+that equalises or is released, a time window with an amplitude table between two cavities). Plus: which path
+ran, the automatic fallback, and the step budget.
 """
 import copy
 import math
@@ -14,6 +17,7 @@ import pytest
 
 from cases.build import build_model
 from cases.library import CASES, HERE
+from cases.runner import cavity_summary, compiled_readback, history_columns, history_rows, run
 from cases.scene import load_scene, scene_from_dict
 from cavity.integration import SolverError, integrate
 from exchange import orifice
@@ -152,3 +156,99 @@ def test_step_budget_inside_one_segment_on_the_compiled_path(tmp_path):
     net = model.network
     with pytest.raises(SolverError, match=r"more than 3 steps before t = [0-9.e+-]+ s; tank: mass"):
         integrate(net, net.initial_state(), 0.0, 2.0, replace(model.options, max_steps=3, compiled=True))
+
+
+# ---- the history read back compiled (exchange.compiled_history, exchange.compiled_peak) against the Python rows
+
+def assert_same_history(model, traj, times=None):
+    """The compiled history equals the row-by-row Python history column by column (≤ 1e-12 of each column's
+    largest magnitude, elementwise), and so do the peak and final values of the summary."""
+    times = np.asarray(model.output_times if times is None else times, dtype=float)
+    readback = compiled_readback(model, traj)
+    assert traj.path == "compiled" and readback is not None
+    fast, slow = readback(times), history_rows(model, traj, times)
+    columns = history_columns(model)
+    assert fast.shape == slow.shape == (times.size, len(columns))
+    for k, name in enumerate(columns):
+        scale = np.max(np.abs(slow[:, k]))
+        np.testing.assert_allclose(fast[:, k], slow[:, k], rtol=1e-12, atol=1e-12 * scale, err_msg=name)
+    y1 = traj(model.scene.time.end)
+    got, want = cavity_summary(model, traj, y1, readback), cavity_summary(model, traj, y1)
+    for cav in want:
+        for key, value in want[cav].items():
+            assert got[cav][key] == pytest.approx(value, rel=1e-12, abs=1e-300), (cav, key)
+    return fast
+
+
+def default_run(model):
+    net = model.network
+    return integrate(net, net.initial_state(), 0.0, model.scene.time.end, model.options)
+
+
+@pytest.mark.parametrize("name", LOWERABLE)
+def test_compiled_history_equals_the_python_history_on_the_library(name):
+    model = model_of(name)
+    traj = default_run(model)
+    assert_same_history(model, traj)
+    results = run(model)  # run() takes the compiled reader on this path
+    assert results.trajectory.path == "compiled"
+    np.testing.assert_allclose(results.history, history_rows(model, results.trajectory, model.output_times),
+                               rtol=1e-12, atol=1e-300)
+
+
+def test_every_library_case_on_the_compiled_path_is_compared():
+    compiled = [name for name in CASES if model_of(name).network.compiled_solver() is not None]
+    assert sorted(compiled) == sorted(LOWERABLE)
+
+
+@pytest.mark.parametrize("p0, end", [(3e5, 20.0), (100.0, 1.0)])
+def test_compiled_history_of_a_two_way_vent_that_equalises(tmp_path, p0, end):
+    model = two_way_scene(tmp_path, p0, end)
+    traj = default_run(model)
+    assert [label for _, label in traj.events][-1] == "vent:equalise"
+    times = np.linspace(0.0, end, 201)
+    rows = assert_same_history(model, traj, np.union1d(times, [t for t, _ in traj.events]))
+    t_eq = traj.events[-1][0]
+    flow = rows[:, history_columns(model).index("vent.mass_flow [kg/s]")]
+    assert np.all(flow[rows[:, 0] >= t_eq] == 0.0) and np.all(flow[rows[:, 0] < t_eq] != 0.0)
+
+
+def test_compiled_history_of_a_vent_released_from_equalised(tmp_path):
+    (tmp_path / "late.csv").write_text("t,mdot\n0,0\n0.01,0\n0.011,0.1\n0.05,0.1\n")
+    data = tank()
+    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "late.csv",
+                                      "temperature": 300.0, "gas": {"N2": 1.0}}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4, "two_way": True}]
+    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    traj = default_run(model)
+    assert traj.modes[0][3] == (True,) and traj.events[0][1] == "vent:release"
+    assert_same_history(model, traj, np.union1d(np.linspace(0.0, 0.1, 101), [t for t, _ in traj.events]))
+
+
+def test_compiled_history_with_a_time_window_an_amplitude_and_two_cavities(tmp_path):
+    """Tank a vents to ambient through a window (10–60 ms) with an amplitude table and feeds tank b through
+    an orifice; a and b equalise (held closed) once the window has shut."""
+    (tmp_path / "amp.csv").write_text("t,a\n0,0.2\n0.02,1.0\n0.04,0.5\n0.08,0.7\n")
+    data = tank(pressure=3e5)
+    data["cavity"][0]["name"] = "a"
+    data["cavity"].append({"name": "b", "pressure": 1.0e5, "temperature": 300.0, "gas": {"N2": 1.0},
+                           "volume": 0.01})
+    data["time"] = {"end": 2.0, "output_interval": 0.002}
+    data["exchange"] = [{"name": "vent", "from": "a", "area": 2e-4, "open_time": 0.01, "close_time": 0.06,
+                         "amplitude": "amp.csv"},
+                        {"name": "link", "from": "a", "to": "b", "area": 5e-5}]
+    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    traj = default_run(model)
+    assert "link:equalise" in [label for _, label in traj.events]
+    times = np.union1d(np.asarray(model.output_times), [0.01, 0.02, 0.04, 0.06] + [t for t, _ in traj.events])
+    rows = assert_same_history(model, traj, times)
+    area = rows[:, history_columns(model).index("vent.area [m^2]")]
+    assert np.all(area[(rows[:, 0] < 0.01) | (rows[:, 0] >= 0.06)] == 0.0)
+    assert area[rows[:, 0] == 0.02][0] == pytest.approx(2e-4)
+
+
+def test_the_python_path_keeps_the_row_by_row_history():
+    model = model_of("blowdown_choked")
+    net = model.network
+    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
+    assert traj.path == "python" and compiled_readback(model, traj) is None
