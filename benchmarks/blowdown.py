@@ -32,6 +32,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import _common as C  # noqa: E402
+import _peers as P  # noqa: E402
 
 RTOLS = tuple(10.0 ** -k for k in range(3, 13))
 TARGETS = (1e-6, 1e-9)
@@ -47,12 +48,12 @@ def main() -> int:
     C.warm_up(case)  # numba compilation or cache load, outside the timings (Cantera is warmed by its repeats)
     runs = [C.run_ventsim(case, method, rtol, label=f"ventsim ({method}, {'compiled' if c is None else 'Python'})",
                           with_output=True, compiled=c) for c in (None, False) for rtol in RTOLS]
-    if C.CANTERA is not None:
-        runs += [C.run_cantera(case, rtol) for rtol in RTOLS]
+    if P.CANTERA is not None:
+        runs += [P.run_cantera(case, rtol) for rtol in RTOLS]
     else:
         print("Cantera is not importable: its rows are skipped\n")
     print(table(runs))
-    if C.CANTERA is None:
+    if P.CANTERA is None:
         return 0
     print()
     ours = [r for r in runs if r.method.startswith("ventsim") and "compiled" in r.method]

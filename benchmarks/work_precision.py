@@ -45,6 +45,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import numpy as np  # noqa: E402
 
 import _common as C  # noqa: E402
+import _peers as P  # noqa: E402
 
 RTOLS = tuple(10.0 ** -k for k in range(3, 13))
 QUICK_RTOLS = (1e-3, 1e-6, 1e-9)
@@ -77,13 +78,13 @@ def run_case(case, rtols, euler_steps, heun_steps, log, compiled_steps=COMPILED_
         for rtol in rtols:
             runs.append(C.run_plain_scipy(case, m, rtol))
     log("  plain solve_ivp done")
-    runs += [C.run_fixed_step(case, n, "euler") for n in euler_steps]
-    runs += [C.run_fixed_step(case, n, "heun") for n in heun_steps]
-    runs += [C.run_fixed_compiled(case, n, "euler") for n in compiled_steps]
-    runs += [C.run_fixed_compiled(case, n, "heun") for n in compiled_steps if n <= 1_000_000]
+    runs += [P.run_fixed_step(case, n, "euler") for n in euler_steps]
+    runs += [P.run_fixed_step(case, n, "heun") for n in heun_steps]
+    runs += [P.run_fixed_compiled(case, n, "euler") for n in compiled_steps]
+    runs += [P.run_fixed_compiled(case, n, "heun") for n in compiled_steps if n <= 1_000_000]
     log("  fixed steps done")
-    if C.CANTERA is not None and case.name in C.CANTERA_CASES:
-        runs += [C.run_cantera(case, rtol) for rtol in rtols]
+    if P.CANTERA is not None and case.name in P.CANTERA_CASES:
+        runs += [P.run_cantera(case, rtol) for rtol in rtols]
         log("  Cantera done")
     return runs
 
