@@ -4,8 +4,9 @@
 ``None`` with the reason in :func:`unsupported_reason`; :func:`cavity.integration.integrate` then runs the Python
 path. Supported: a plain ``Network`` (not a subclass), ideal-gas mixtures with piecewise cp polynomials,
 adiabatic, isothermal or heat-loss cavities with fixed, table or scaled-mesh volumes, mass/temperature-table
-inflators, orifice exchanges (constant Cd) to ambient (one- or two-way) or between cavities, with an optional
-time window and amplitude table (no pop pressure, no delta area).
+inflators, exchanges to ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe or
+linear-resistance law (constant Cd), with an optional time window, amplitude table and pop pressure with hold
+time (no delta area).
 
 The arrays are described in :mod:`exchange.compiled_rhs`.
 """
@@ -20,16 +21,18 @@ import numpy as np
 from cavity.inflator import MassTemperatureInflator
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 
-from .laws import OrificeLaw
+from . import laws
 
 __all__ = ["CompiledNetwork", "lower", "unsupported_reason"]
 
 ENERGY = {"adiabatic": 0, "isothermal": 1, "heat_loss": 2}
+#: law class of :mod:`exchange.laws` -> kind code in ``ei[:, 7]`` (:func:`exchange.compiled_rhs.law_flow`)
+LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResistanceLaw": 3}
 
 
 @dataclass
 class CompiledNetwork:
-    """A network as arrays, with its switch functions (kind 0: choke, 1: one-way reversal) and their labels."""
+    """A network as arrays, with its switch functions (kinds of :func:`_switches`) and their labels."""
 
     model: tuple
     kinds: np.ndarray
@@ -38,30 +41,47 @@ class CompiledNetwork:
     T_initial: np.ndarray
     network: object
     _modes: dict = field(default_factory=dict, repr=False)
+    _run_modes: list = field(default_factory=list, repr=False)
 
     def run(self, y0, t0: float, stops, rtol: float, atol, max_step: float, max_steps: int, near: float):
         """One call of :func:`exchange.compiled_solver.solve` from the network's current discrete state; returns
-        its tuple (see there)."""
+        its tuple (see there) with the segment table cut to 5 columns, the last an index for
+        :meth:`segment_mode`."""
         from .compiled_solver import solve
 
-        model = self.model
+        model, net = self.model, self.network
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
-        eq = model[20]
-        for j, e in enumerate(self.network.equalised):
-            eq[j] = e
+        eq, op, hold = model[20], model[21], model[22]
+        for j, ex in enumerate(net.exchanges):
+            eq[j] = net.equalised[j]
+            op[j] = 0 if self.model[12][j, 6] == 1 and not net.popped[j] else 1
+            hold[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
         y0 = np.asarray(y0, dtype=float)
         if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
-        return solve(model, self.kinds, self.exchanges, y0, float(t0), np.array(stops, dtype=float), float(rtol),
-                     atol, float(max_step), int(max_steps), float(near))
+        out = solve(model, self.kinds, self.exchanges, y0, float(t0), np.array(stops, dtype=float), float(rtol),
+                    atol, float(max_step), int(max_steps), float(near))
+        segs = out[4]
+        self._run_modes = [self._mode(row) for row in segs.tolist()]
+        table = segs[:, :5].copy()
+        table[:, 4] = np.arange(len(segs))
+        return out[:4] + (table,) + out[5:]
+
+    def _mode(self, row) -> tuple:
+        """The network's snapshot (:meth:`Network.snapshot`) from a row of the solver's segment table: code
+        (bits: equalised exchanges), then per exchange popped, then per exchange the hold start (NaN: none)."""
+        ne, code = len(self.network.exchanges), int(row[4])
+        popped = tuple(bool(p) for p in row[5:5 + ne])
+        holding = tuple(None if math.isnan(h) else h for h in row[5 + ne:5 + 2 * ne])
+        key = (code, popped, holding)
+        if key not in self._modes:
+            areas = tuple(ex.area if p else None for ex, p in zip(self.network.exchanges, popped))
+            self._modes[key] = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
+        return self._modes[key]
 
     def segment_mode(self, code) -> tuple:
-        """The network's snapshot during a segment whose equalised exchanges are the bits of ``code``."""
-        base, code = self.network.snapshot()[:3], int(code)
-        key = (base, code)
-        if key not in self._modes:
-            self._modes[key] = base + (tuple(bool(code >> j & 1) for j in range(len(self.network.exchanges))),)
-        return self._modes[key]
+        """The network's snapshot during segment ``code`` of the latest :meth:`run`."""
+        return self._run_modes[int(code)]
 
 
 def unsupported_reason(net) -> str | None:
@@ -81,11 +101,13 @@ def unsupported_reason(net) -> str | None:
             if type(inf) is not MassTemperatureInflator or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
                 return f"inflator {inf.name}: {type(inf).__name__}"
     for ex in net.exchanges:
-        if type(ex.law) is not OrificeLaw or not isinstance(ex.law.discharge_coefficient, (int, float)):
-            return f"exchange {ex.name}: law {type(ex.law).__name__} (only orifice with a constant Cd)"
+        law = type(ex.law).__name__
+        if law not in LAW_KINDS or type(ex.law) is not getattr(laws, law) \
+                or not isinstance(getattr(ex.law, "discharge_coefficient", 1.0), (int, float)):
+            return f"exchange {ex.name}: law {law} (only {', '.join(LAW_KINDS)} with a constant Cd)"
         act = ex.activation
-        if act is not None and (act.pop_pressure is not None or act.delta_area):
-            return f"exchange {ex.name}: pop pressure or delta area"
+        if act is not None and act.delta_area:
+            return f"exchange {ex.name}: delta area"
     return None
 
 
@@ -131,33 +153,53 @@ def _inflators(net, tables, ns, nr):
             np.array(irows, dtype=float).reshape(-1, nr, 7))
 
 
+def _law_parameters(law) -> tuple:
+    """(Cd, parameter 1, parameter 2) of a law for ``ef[:, (1, 6, 7)]``."""
+    name = type(law).__name__
+    if name == "GraefeLaw":
+        return 1.0, law.flc, law.fac
+    if name == "LinearResistanceLaw":
+        return 1.0, law.conductance, 0.0
+    return float(law.discharge_coefficient), getattr(law, "open_fraction", 1.0), 0.0
+
+
 def _exchanges(net, tables):
     ei, ef = [], []
     for ex in net.exchanges:
         act = ex.activation
         amp = tables.add(act.amplitude) if act is not None and act.amplitude is not None else -1
         window = act is not None
+        pop = window and act.pop_pressure is not None
+        cd, p1, p2 = _law_parameters(ex.law)
         ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
-                   int(window), int(net.can_equalise(len(ei)))))
-        ef.append((ex.area, float(ex.law.discharge_coefficient), act.open_time if window else 0.0,
-                   act.close_time if window else math.inf))
-    return np.array(ei, dtype=np.int64).reshape(-1, 6), np.array(ef, dtype=float).reshape(-1, 4)
+                   int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__]))
+        ef.append((ex.area, cd, act.open_time if window else 0.0, act.close_time if window else math.inf,
+                   act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2))
+    return np.array(ei, dtype=np.int64).reshape(-1, 8), np.array(ef, dtype=float).reshape(-1, 8)
 
 
 def _switches(net):
+    """Switch kinds (0 choke, 1 one-way reversal, 2/3 equalise/release, 4 pop, 5 pop-drop, 6 pop-hold), their
+    exchanges and labels, in the order of :meth:`Network.events` (each watched only in its discrete state)."""
     kinds, js, labels = [], [], []
-    for j, ex in enumerate(net.exchanges):
-        kinds.append(0)
+
+    def add(kind, j, what):
+        kinds.append(kind)
         js.append(j)
-        labels.append(f"{ex.name}:choke")
+        labels.append(f"{net.exchanges[j].name}:{what}")
+
+    for j, ex in enumerate(net.exchanges):
+        if ex.law.pneumatic:
+            add(0, j, "choke")
         if ex.downstream is None and not ex.two_way:
-            kinds.append(1)
-            js.append(j)
-            labels.append(f"{ex.name}:reversal")
+            add(1, j, "reversal")
         elif net.can_equalise(j):
-            kinds += [2, 3]
-            js += [j, j]
-            labels += [f"{ex.name}:equalise", f"{ex.name}:release"]
+            add(2, j, "equalise")
+            add(3, j, "release")
+        if ex.activation is not None and ex.activation.pop_pressure is not None:
+            add(4, j, "pop")
+            add(5, j, "pop-drop")
+            add(6, j, "pop-hold")
     return np.array(kinds, dtype=np.int64), np.array(js, dtype=np.int64), labels
 
 
@@ -181,6 +223,7 @@ def lower(net) -> CompiledNetwork | None:
     model = (rows, np.array(gas.breaks, dtype=float), np.array(linear, dtype=np.int64),
              np.asarray(gas.molar_masses, dtype=float), tx, ty, ti, ci, cf, ii, ifl, irows, ei, ef, amb,
              int(net.ledger_offset), T0.copy(), np.zeros((nc, 9 + ns)), np.zeros(ns), np.zeros(7),
-             np.zeros(len(net.exchanges), dtype=np.int64))
+             np.zeros(len(net.exchanges), dtype=np.int64), np.ones(len(net.exchanges), dtype=np.int64),
+             np.full(len(net.exchanges), np.nan))
     kinds, js, labels = _switches(net)
     return CompiledNetwork(model, kinds, js, labels, T0, net)

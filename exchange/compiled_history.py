@@ -13,9 +13,9 @@ Each step of the Python builder has its mirror here:
   t, right limit at a switch), :func:`segment_of`;
 - the step of that segment and its 7th-order interpolant: ``DenseSteps.__call__`` (the left step at a step end),
   :func:`dense_state` with :func:`cavity.rk_compiled.dense_eval`;
-- the discrete state: ``Network.restore(mode)``; a lowered network has neither pop vents nor delta areas
-  (:func:`exchange.compiled.unsupported_reason`), so of a mode only the equalised flags (``mode[3]``) act, passed
-  per segment as ``eqs``;
+- the discrete state: ``Network.restore(mode)``; a lowered network has no delta areas
+  (:func:`exchange.compiled.unsupported_reason`), so of a mode only the equalised flags (``mode[3]``) and the
+  popped flags (``mode[0]``) act, passed per segment as ``eqs`` and ``ops`` (0 while a pop vent is shut);
 - the row: the columns of :func:`cases.runner.history_columns`, time [s], then per cavity pressure [Pa],
   temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area [m^2].
 """
@@ -28,7 +28,8 @@ from cavity.rk_compiled import RECORD, dense_eval
 
 from .compiled_rhs import MASS, P, TT, V, exchange_area, exchange_flow, states
 
-__all__ = ["segment_of", "dense_state", "history_rows", "row_width", "equalised_per_segment", "history"]
+__all__ = ["segment_of", "dense_state", "history_rows", "row_width", "equalised_per_segment", "opened_per_segment",
+           "history"]
 
 
 def row_width(n_cavities: int, n_exchanges: int) -> int:
@@ -68,19 +69,20 @@ def dense_state(recs, segs, i, t, y):
 
 
 @njit(cache=True)
-def history_rows(M, recs, segs, eqs, times):
+def history_rows(M, recs, segs, eqs, ops, times):
     """History rows at ``times`` [s] (sorted or not) from a compiled run's records.
 
     ``M``: the model tuple of :class:`exchange.compiled.CompiledNetwork`; ``recs``, ``segs``: the step records
     and segment table of :func:`exchange.compiled_solver.solve`; ``eqs`` (segments, exchanges) int: 1 where an
-    exchange is equalised (held closed) during the segment. Returns (ok, rows (len(times), width)); ok is False
+    exchange is equalised (held closed) during the segment; ``ops`` (segments, exchanges) int: 0 where a pop vent
+    has not popped during the segment (:func:`opened_per_segment`). Returns (ok, rows (len(times), width)); ok is False
     when a temperature solve failed (the caller then builds the rows in Python). The model's scratch is not
     touched: the Newton first guesses start at the cavities' initial temperatures.
     """
-    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M
+    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
     nc, ne = ci.shape[0], ei.shape[0]
     n_y = (recs.shape[1] - RECORD) // 8
-    y, guess, eq_now = np.empty(n_y), cf[:, 0].copy(), np.empty(ne, np.int64)
+    y, guess, eq_now, op_now = np.empty(n_y), cf[:, 0].copy(), np.empty(ne, np.int64), np.empty(ne, np.int64)
     st_, n_, row_ = np.empty_like(st), np.empty_like(n), np.empty_like(row)
     out = np.empty((times.size, 1 + 4 * nc + 2 * ne))
     ok = True
@@ -89,6 +91,7 @@ def history_rows(M, recs, segs, eqs, times):
         i = segment_of(segs, t)
         dense_state(recs, segs, i, t, y)
         eq_now[:] = eqs[i]
+        op_now[:] = ops[i]
         ok &= states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t, y, guess, st_, n_, row_)
         out[r, 0] = t
         for c in range(nc):
@@ -96,8 +99,8 @@ def history_rows(M, recs, segs, eqs, times):
             out[r, 3 + 4 * c], out[r, 4 + 4 * c] = st_[c, MASS], st_[c, V]
         base = 1 + 4 * nc
         for j in range(ne):
-            out[r, base + 2 * j] = exchange_flow(ei, ef, eq_now, tx, ty, ti, st_, amb, j, t)
-            out[r, base + 2 * j + 1] = exchange_area(ei, ef, tx, ty, ti, j, t)
+            out[r, base + 2 * j] = exchange_flow(ei, ef, eq_now, op_now, tx, ty, ti, st_, amb, j, t)
+            out[r, base + 2 * j + 1] = exchange_area(ei, ef, op_now, tx, ty, ti, j, t)
     return ok, out
 
 
@@ -108,6 +111,17 @@ def equalised_per_segment(modes, n_exchanges: int) -> np.ndarray:
         if mode is not None and len(mode) > 3:
             eqs[i] = mode[3]
     return eqs
+
+
+def opened_per_segment(modes, pop_vents) -> np.ndarray:
+    """(segments, exchanges) int: 0 where exchange j is a pop vent (``pop_vents[j]``) not popped (``mode[0]``)
+    during the segment, else 1."""
+    ops = np.ones((len(modes), len(pop_vents)), dtype=np.int64)
+    for i, mode in enumerate(modes):
+        for j, pop in enumerate(pop_vents):
+            if pop and not (mode is not None and mode[0][j]):
+                ops[i, j] = 0
+    return ops
 
 
 def history(fast, traj, times, eqs=None) -> np.ndarray | None:
@@ -122,5 +136,6 @@ def history(fast, traj, times, eqs=None) -> np.ndarray | None:
         return None
     if eqs is None:
         eqs = equalised_per_segment(traj.modes, len(fast.network.exchanges))
-    ok, out = history_rows(fast.model, recs[0], recs[1], eqs, np.ascontiguousarray(times, dtype=float))
+    ops = opened_per_segment(traj.modes, fast.model[12][:, 6])
+    ok, out = history_rows(fast.model, recs[0], recs[1], eqs, ops, np.ascontiguousarray(times, dtype=float))
     return out if ok else None

@@ -17,9 +17,12 @@ Array layout (built by :func:`exchange.compiled.lower`):
   [m^3], minimum volume [m^3], h_c·A [W/K], T_amb [K], fixed or mesh volume [m^3];
 - inflators ``ii`` (ni, 3) int: cavity, mass-flow table, temperature table; ``if_`` (ni, 3 + ns): start [s],
   scale [-], gas mass [kg], mass fractions; ``irows`` (ni, nr, 7) total coefficients of the inflator gas;
-- exchanges ``ei`` (ne, 6) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
-  has a time window, has an equalised mode; ``ef`` (ne, 4): area [m^2], Cd [-], open time [s], close time [s];
-  ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.network.EQUALISED_BELOW`);
+- exchanges ``ei`` (ne, 8) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
+  has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`); ``ef`` (ne, 8): area [m^2], Cd [-], open time [s], close time [s], pop pressure [Pa], hold time
+  [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance: conductance);
+  ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.network.EQUALISED_BELOW`); ``op`` (ne,)
+  int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
+  holding);
 - ambient ``amb`` (6 + ns,): p [Pa], T [K], ρ [kg/m^3], R [J/(kg K)], γ [-], h [J/kg], mass fractions;
 - state scratch ``st`` (nc, 9 + ns): p, T, ρ, R, γ, h, V, dV/dt, mass, mass fractions (filled by
   :func:`states`).
@@ -31,13 +34,13 @@ import math
 import numpy as np
 from numba import njit
 
+from .compiled_laws import critical_pressure_ratio, fabric_leakage_mass_flow, graefe_mass_flow, orifice_mass_flow
 from .network import EQUALISED_BELOW, RELEASED_ABOVE
 
 R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
 NEWTON_RTOL = 1e-10  # cavity.tolerances.TOL.newton_rtol
 NEWTON_MAX = 60
 T_FLOOR = 1.0
-LINEAR_BELOW = 1e-4  # exchange.orifice.LINEAR_BELOW
 
 P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # columns of the state scratch
 
@@ -196,44 +199,12 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
 
 
 @njit(cache=True, inline="always")
-def critical_pressure_ratio(gamma):
-    """(2/(γ+1))^(γ/(γ−1)) [-] (:func:`exchange.orifice.critical_pressure_ratio`)."""
-    return (2.0 / (gamma + 1.0)) ** (gamma / (gamma - 1.0))
-
-
-@njit(cache=True, inline="always")
-def _root_bracket(q, gamma):
-    return math.sqrt(q ** (2.0 / gamma) * -math.expm1(math.log(q) * (gamma - 1.0) / gamma))
-
-
-@njit(cache=True, inline="always")
-def _root_bracket_slope(s, gamma):
-    q = 1.0 - s
-    g = q ** (2.0 / gamma) - q ** ((gamma + 1.0) / gamma)
-    dg_dq = (2.0 / gamma) * q ** (2.0 / gamma - 1.0) - ((gamma + 1.0) / gamma) * q ** (1.0 / gamma)
-    return -dg_dq / (2.0 * math.sqrt(g))
-
-
-@njit(cache=True, inline="always")
-def orifice_mass_flow(p_up, T_up, p_down, R, gamma, area, Cd):
-    """Isentropic orifice flow with choking [kg/s] (:func:`exchange.orifice.orifice_mass_flow`, same C¹
-    quadratic below Δp/p = 1e-4)."""
-    if p_down >= p_up or area <= 0.0:
-        return 0.0
-    s = (p_up - p_down) / p_up
-    if s >= LINEAR_BELOW:
-        root = _root_bracket(max(p_down / p_up, critical_pressure_ratio(gamma)), gamma)
-    else:
-        d = LINEAR_BELOW
-        f, fp = _root_bracket(1.0 - d, gamma), _root_bracket_slope(d, gamma)
-        root = s * ((2.0 * f - fp * d) / d + s * (fp * d - f) / (d * d))
-    return Cd * area * p_up / math.sqrt(R * T_up) * math.sqrt(2.0 * gamma / (gamma - 1.0)) * root
-
-
-@njit(cache=True, inline="always")
-def exchange_area(ei, ef, tx, ty, ti, j, t):
-    """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area` without pop or delta)."""
+def exchange_area(ei, ef, op, tx, ty, ti, j, t):
+    """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area` without delta area);
+    ``op[j]`` is 0 while a pop vent has not popped."""
     if ei[j, 4] == 1 and not (ef[j, 2] <= t < ef[j, 3]):
+        return 0.0
+    if op[j] == 0:
         return 0.0
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
     return a * ef[j, 0]
@@ -246,19 +217,36 @@ def side(st, amb, i, c):
 
 
 @njit(cache=True, inline="always")
-def exchange_flow(ei, ef, eq, tx, ty, ti, st, amb, j, t):
-    """Signed mass flow [kg/s] of exchange j, up → down (:meth:`exchange.vent.Exchange.mass_flow`, orifice);
-    0 while equalised."""
-    area = exchange_area(ei, ef, tx, ty, ti, j, t)
+def law_flow(ei, ef, st, amb, j, u, p_down, area):
+    """Mass flow [kg/s] of exchange j's law from side u (cavity, or ambient if < 0) into p_down [Pa], >= 0
+    (``law.mass_flow`` of :mod:`exchange.laws`; kinds in :data:`exchange.compiled.LAW_KINDS`)."""
+    kind, p_up = ei[j, 7], side(st, amb, u, P)
+    if kind == 2:  # GraefeLaw
+        return graefe_mass_flow(p_up, p_down, side(st, amb, u, RHO), area, ef[j, 6], ef[j, 7])
+    if kind == 3:  # LinearResistanceLaw
+        dp = p_up - p_down
+        return ef[j, 6] * area * dp if dp > 0 else 0.0
+    if kind == 1:  # FabricLeakageLaw
+        return fabric_leakage_mass_flow(p_up, side(st, amb, u, TT), p_down, side(st, amb, u, RG),
+                                        side(st, amb, u, GAM), area, ef[j, 1], ef[j, 6])
+    return orifice_mass_flow(p_up, side(st, amb, u, TT), p_down, side(st, amb, u, RG), side(st, amb, u, GAM), area,
+                             ef[j, 1])
+
+
+@njit(cache=True, inline="always")
+def exchange_flow(ei, ef, eq, op, tx, ty, ti, st, amb, j, t):
+    """Signed mass flow [kg/s] of exchange j, up → down (:meth:`exchange.vent.Exchange.mass_flow`);
+    0 while equalised or not popped."""
+    area = exchange_area(ei, ef, op, tx, ty, ti, j, t)
     if area <= 0.0 or eq[j] == 1:
         return 0.0
-    a, b, cd = ei[j, 0], ei[j, 1], ef[j, 1]
+    a, b = ei[j, 0], ei[j, 1]
     pa, pb = side(st, amb, a, P), side(st, amb, b, P)
     if pa >= pb:
-        return orifice_mass_flow(pa, st[a, TT], pb, st[a, RG], st[a, GAM], area, cd)
+        return law_flow(ei, ef, st, amb, j, a, pb, area)
     if b < 0 and ei[j, 2] == 0:
         return 0.0
-    return -orifice_mass_flow(pb, side(st, amb, b, TT), pa, side(st, amb, b, RG), side(st, amb, b, GAM), area, cd)
+    return -law_flow(ei, ef, st, amb, j, b, pa, area)
 
 
 @njit(cache=True, inline="always")
@@ -272,7 +260,7 @@ def _transfer(ci, dy, i, mdot, edot, st, amb, src):
 
 @njit(cache=True)
 def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb,
-                ledger, T_guess, st, n, row, eq):
+                ledger, T_guess, st, n, row, eq, op):
     """d(unknowns)/dt into dy (:meth:`exchange.network.Network.rhs`); False if a temperature solve failed.
 
     ``seg_end``: inputs are read at its left limit when t reaches it (:meth:`Network.input_time`); ``ledger``:
@@ -307,7 +295,7 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
             dy[c + 2] += work
             dy[c + 3] += heat
     for j in range(ei.shape[0]):
-        mdot = exchange_flow(ei, ef, eq, tx, ty, ti, st, amb, j, t)
+        mdot = exchange_flow(ei, ef, eq, op, tx, ty, ti, st, amb, j, t)
         if mdot == 0.0:
             continue
         src = ei[j, 0] if mdot >= 0.0 else ei[j, 1]
@@ -322,15 +310,20 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
 
 
 @njit(cache=True)
-def switch_value(kind, j, ei, st, amb):
+def switch_value(kind, j, ei, ef, st, amb):
     """Switch function of exchange j on the states in ``st`` (:meth:`Network._choke_switch`, kind 0,
-    :meth:`Network._dp_switch`, kind 1, the equalise and release switches, kinds 2 and 3) [-]."""
+    :meth:`Network._dp_switch`, kind 1, the equalise and release switches, kinds 2 and 3,
+    :meth:`Network._pop_switch`, kinds 4 (pop) and 5 (pop-drop)) [-]. The pop-hold switch (kind 6) depends on
+    time only: :func:`exchange.compiled_solver.switches`."""
     a, b = ei[j, 0], ei[j, 1]
     pa, pb = st[a, P], side(st, amb, b, P)
     if kind == 1:
         return (pa - pb) / max(pa, pb)
-    if kind >= 2:
+    if kind == 2 or kind == 3:
         return abs(pa - pb) / max(pa, pb) / (EQUALISED_BELOW if kind == 2 else RELEASED_ABOVE) - 1.0
+    if kind == 4 or kind == 5:
+        pop = ef[j, 4]
+        return (pa - pb - pop) / max(pop, pb)
     if pa >= pb:
         return (pb - critical_pressure_ratio(st[a, GAM]) * pa) / pa
     return (pa - critical_pressure_ratio(side(st, amb, b, GAM)) * pb) / pb

@@ -20,6 +20,7 @@ from numba import njit
 from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_FACTOR, N_STAGES, RECORD, SAFETY,
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
+from .compiled_modes import on_event, record_segment, watched
 from .compiled_rhs import network_rhs, states, switch_value
 
 OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED = 0, 1, 2, 3, 4, 5
@@ -31,20 +32,25 @@ EPS4 = 4.0 * np.finfo(np.float64).eps
 @njit(cache=True)
 def rhs(M, t, y, out, seg_end):
     """Network right-hand side into out; False when a temperature solve failed."""
-    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M
+    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
     return network_rhs(t, y, out, seg_end, rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef,
-                       amb, ledger, T_guess, st, n, row, eq)
+                       amb, ledger, T_guess, st, n, row, eq, M[21])
 
 
 @njit(cache=True)
 def switches(M, kinds, js, t, y, seg_end, vals):
-    """Values of switch functions (kinds, js) at (t, y), inputs read as the right-hand side reads them."""
-    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M
-    if t >= seg_end:
-        t = np.nextafter(seg_end, -np.inf)
-    states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row)
+    """Values of switch functions (kinds, js) at (t, y), inputs read as the right-hand side reads them; the
+    pop-hold switch (kind 6) is (t − due)/hold at the raw t, due = hold start + hold time (:meth:`Network.events`)."""
+    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
+    t_in = np.nextafter(seg_end, -np.inf) if t >= seg_end else t
+    states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t_in, y, T_guess, st, n, row)
     for q in range(kinds.size):
-        vals[q] = switch_value(kinds[q], js[q], ei, st, amb)
+        j = js[q]
+        if kinds[q] == 6:  # 1 (never watched) when not holding
+            h = ef[j, 5]
+            vals[q] = (t - (M[22][j] + h)) / h if h > 0.0 and not math.isnan(M[22][j]) else 1.0
+        else:
+            vals[q] = switch_value(kinds[q], j, ei, ef, st, amb)
 
 
 @njit(cache=True)
@@ -264,11 +270,10 @@ def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
     vals, pvals = np.empty(nsw), np.empty(nsw)
     wq, wd = np.empty(nsw, np.int64), np.empty(nsw)
     switches(M, kinds, js, t, y, seg_end, vals)
-    eq = M[20]
     probed, nw = False, 0
     for q in range(nsw):
-        if (kinds[q] == 2 and eq[js[q]] == 1) or (kinds[q] == 3 and eq[js[q]] == 0):
-            continue  # the switch of the other equalised mode
+        if not watched(M, kinds[q], js[q]):
+            continue  # the switch of another discrete state
         if q == last_q and t == last_t:
             d = -last_dir
         elif abs(vals[q]) > near:
@@ -310,12 +315,13 @@ def begin_segment(M, kinds, js, t, y, seg_end):
 def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near):
     """Integrate from t0 through every stop (the last is the end).
 
-    Returns (status, t, y, step records, segments (k, 5): first record, end record, t_min, t_max, mode, events
-    (m, 3): time, switch index, direction, stats [rhs calls, steps, restarts, events]).
+    Returns (status, t, y, step records, segments (k, 5 + 2 ne): first record, end record, t_min, t_max, mode
+    code, popped and hold start per exchange (:func:`record_segment`), events (m, 3): time, switch index,
+    direction, stats [rhs calls, steps, restarts, events]).
     """
     n = y0.size
     buf, cnt = np.empty((64, RECORD + 8 * n)), np.zeros(1, np.int64)
-    segs, evs = np.empty((16, 5)), np.empty((16, 3))
+    segs, evs = np.empty((16, 5 + 2 * M[21].size)), np.empty((16, 3))
     nseg, nev = 0, 0
     stats = np.zeros(4, np.int64)
     t, y = t0, y0.copy()
@@ -334,7 +340,7 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near):
             if status != OK:
                 return status, t_end, y_end, buf[:cnt[0]], segs[:nseg], evs[:nev], stats
             segs = _grow(segs, nseg + 2)
-            segs[nseg, 0], segs[nseg, 1], segs[nseg, 2], segs[nseg, 3], segs[nseg, 4] = first, cnt[0], t, t_end, mode
+            record_segment(M, segs, nseg, first, cnt[0], t, t_end, mode)
             nseg += 1
             if qw < 0:
                 last_q = -1
@@ -345,12 +351,10 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near):
                                                            rtol, atol, max_step, NO_BUDGET, stats, buf, cnt)
                     if status != OK:
                         return status, t_end, y_end, buf[:cnt[0]], segs[:nseg], evs[:nev], stats
-                    segs[nseg, 0], segs[nseg, 1], segs[nseg, 2], segs[nseg, 3] = first, cnt[0], t_k, t_end
-                    segs[nseg, 4] = mode
+                    record_segment(M, segs, nseg, first, cnt[0], t_k, t_end, mode)
                     nseg += 1
                 q = wq[qw]
-                if kinds[q] >= 2:  # Network.on_event: equalise holds the exchange closed, release opens it
-                    M[20][js[q]] = 1 if kinds[q] == 2 else 0
+                on_event(M, kinds[q], js[q], t_end)
                 evs = _grow(evs, nev + 1)
                 evs[nev, 0], evs[nev, 1], evs[nev, 2] = t_end, q, wd[qw]
                 nev += 1

@@ -24,6 +24,7 @@ from exchange import orifice
 from exchange.compiled_rhs import orifice_mass_flow
 from exchange.compiled_solver import rhs as compiled_rhs
 from tests.scenes import tank
+from tests.test_exchange_scenes import fill_with_pop
 
 LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
              "airbag_vented"]
@@ -138,7 +139,7 @@ def test_release_reopens_an_equalised_exchange(tmp_path):
 
 def test_unsupported_networks_fall_back_to_python(tmp_path):
     data = tank(pressure=2e5)
-    data["exchange"] = [{"name": "vent", "from": "tank", "law": "linear_resistance", "conductance": 1e-6,
+    data["exchange"] = [{"name": "vent", "from": "tank", "law": "bulk_viscosity", "viscous_resistance": 50.0,
                          "area": 1e-4}]
     model = build_model(scene_from_dict(copy.deepcopy(data), tmp_path / "scene.toml"))
     net = model.network
@@ -252,3 +253,173 @@ def test_the_python_path_keeps_the_row_by_row_history():
     net = model.network
     traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
     assert traj.path == "python" and compiled_readback(model, traj) is None
+
+
+# ---- pop vents (pop, pop-drop, pop-hold) and the fabric / Graefe / linear-resistance laws on the compiled path
+
+def pop_hold_reset(folder: Path) -> dict:
+    """tests/test_exchange_scenes.py::test_pop_hold_resets_when_pressure_drops_back: a spike shorter than the
+    hold time; the vent pops (hold starts), drops back (re-armed) and never opens."""
+    (folder / "spike.csv").write_text("t,mdot\n0,0\n0.001,10.0\n0.004,10.0\n0.005,0\n")
+    data = tank()
+    data["time"] = {"end": 0.05, "output_interval": 0.001}
+    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "spike.csv",
+                                      "temperature": 300.0, "gas": {"N2": 1.0}}]
+    data["exchange"] = [{"name": "leak", "from": "tank", "area": 1e-4, "law": "linear_resistance",
+                         "conductance": 1.0},
+                        {"name": "vent", "from": "tank", "area": 5e-4, "pop_pressure": 3e4, "pop_hold_time": 0.02}]
+    return data
+
+
+def fabric_pop_between_cavities(folder: Path) -> dict:
+    """An inflated tank pops (after a hold) into a second tank through fabric; the second leaks to ambient through
+    Graefe porosity; the first has a window-limited orifice with an amplitude."""
+    (folder / "amp.csv").write_text("t,a\n0,0.5\n0.03,1.0\n")
+    data = tank(energy="adiabatic")
+    data["time"] = {"end": 0.08, "output_interval": 0.001}
+    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": 0.5,
+                                      "temperature": 600.0, "gas": {"N2": 1.0}}]
+    data["cavity"].append({"name": "b", "pressure": 1.0e5, "temperature": 300.0, "gas": {"N2": 1.0},
+                           "volume": 0.02})
+    data["exchange"] = [{"name": "seam", "from": "tank", "to": "b", "area": 4e-4, "law": "fabric_leakage",
+                         "open_fraction": 0.4, "discharge_coefficient": 0.8, "pop_pressure": 3e4,
+                         "pop_hold_time": 0.002},
+                        {"name": "skin", "from": "b", "area": 2e-3, "law": "graefe", "flc": 0.3, "fac": 0.5},
+                        {"name": "vent", "from": "tank", "area": 1e-4, "open_time": 0.01, "close_time": 0.06,
+                         "amplitude": "amp.csv"}]
+    return data
+
+
+def law_scene(folder: Path, law: dict, two_way: bool, to_cavity: bool) -> dict:
+    """A tank venting to ambient (one-way), filling from it (two-way, below ambient) or feeding a second tank."""
+    data = tank(pressure=0.9e5 if two_way else 3e5)  # subsonic inflow (a constant choked inflow makes steps
+    data["time"] = {"end": 0.2, "output_interval": 0.002}  # whose error estimate is round-off: paths may differ)
+    area = 1e-4 if law["law"] == "linear_resistance" else 2e-4 if to_cavity or two_way else 2e-3
+    vent = dict({"name": "vent", "from": "tank", "area": area, "two_way": two_way}, **law)
+    if to_cavity:
+        data["cavity"].append({"name": "b", "pressure": 1.5e5, "temperature": 280.0, "gas": {"N2": 1.0},
+                               "volume": 0.03})
+        vent["to"] = "b"
+    data["exchange"] = [vent]
+    return data
+
+
+POP_SCENES = {"pop": lambda folder: fill_with_pop(5.0e4),
+              "pop-hold": lambda folder: fill_with_pop(5.0e4, 0.004),
+              "pop-hold reset": pop_hold_reset,
+              "fabric pop between cavities": fabric_pop_between_cavities}
+LAWS = [{"law": "fabric_leakage", "open_fraction": 0.3, "discharge_coefficient": 0.9},
+        {"law": "graefe", "flc": 0.8, "fac": 0.7},
+        {"law": "linear_resistance", "conductance": 0.05}]
+
+
+def assert_same_on_both_paths(model, events_expected=None):
+    """Both paths: the same event labels, event times and discrete states to 1e-12, the same steps (± 2), and the
+    compiled history read back equal to the Python path's history column by column (1e-12 of each column's
+    largest magnitude). Returns the compiled trajectory."""
+    fast_traj, slow_traj = both_paths(model)
+    assert (fast_traj.path, slow_traj.path) == ("compiled", "python")
+    labels = [label for _, label in slow_traj.events]
+    assert [label for _, label in fast_traj.events] == labels
+    if events_expected is not None:
+        assert [label for label in labels if label.split(":")[1].startswith("pop")] == events_expected
+    np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=1e-12)
+    # steps may part by one or two where the solution is a polynomial in t (a closed vent while the inflow is
+    # constant): the error estimate is then round-off (docs/benchmarks.md, section 1)
+    assert abs(fast_traj.stats["steps"] - slow_traj.stats["steps"]) <= 2
+    assert len(fast_traj.modes) == len(slow_traj.modes)
+    for fast_mode, slow_mode in zip(fast_traj.modes, slow_traj.modes):
+        assert (fast_mode[0], fast_mode[2], fast_mode[3]) == (slow_mode[0], slow_mode[2], slow_mode[3])
+        assert [h is None for h in fast_mode[1]] == [h is None for h in slow_mode[1]]
+        np.testing.assert_allclose([h for h in fast_mode[1] if h is not None],
+                                   [h for h in slow_mode[1] if h is not None], rtol=1e-12)
+    times = np.union1d(np.asarray(model.output_times), [t for t, _ in slow_traj.events])
+    fast, slow = compiled_readback(model, fast_traj)(times), history_rows(model, slow_traj, times)
+    for k, name in enumerate(history_columns(model)):
+        scale = np.max(np.abs(slow[:, k]))
+        np.testing.assert_allclose(fast[:, k], slow[:, k], rtol=1e-12, atol=1e-12 * scale, err_msg=name)
+    return fast_traj
+
+
+@pytest.mark.parametrize("name, pops", [("pop", ["vent:pop"]), ("pop-hold", ["vent:pop", "vent:pop-hold"]),
+                                        ("pop-hold reset", ["vent:pop", "vent:pop-drop"]),
+                                        ("fabric pop between cavities", ["seam:pop", "seam:pop-hold"])])
+def test_pop_vents_are_the_same_on_both_paths(tmp_path, name, pops):
+    model = build_model(scene_from_dict(POP_SCENES[name](tmp_path), tmp_path / "scene.toml"))
+    traj = assert_same_on_both_paths(model, pops)
+    assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
+
+
+@pytest.mark.parametrize("name", list(POP_SCENES))
+def test_pop_vents_run_compiled(tmp_path, name):
+    model = build_model(scene_from_dict(POP_SCENES[name](tmp_path), tmp_path / "scene.toml"))
+    assert model.network.compiled_unsupported() is None
+    results = run(model)
+    assert results.summary["solver"]["path"] == "compiled"
+    shut = [t for t, label in results.trajectory.events if label.endswith(("vent:pop", "vent:pop-hold"))]
+    if name == "pop-hold reset":  # never opens: no flow at all
+        assert np.all(results.column("vent.mass_flow") == 0.0) and np.all(results.column("vent.area") == 0.0)
+    elif name.startswith("pop"):
+        t, flow = results.column("time"), results.column("vent.mass_flow")
+        assert np.all(flow[t < shut[-1]] == 0.0) and np.all(flow[t > shut[-1]] > 0.0)
+
+
+def test_the_pop_vent_mode_is_left_on_the_network(tmp_path):
+    """After a compiled run the network holds the final discrete state, as after the Python path."""
+    model = build_model(scene_from_dict(fill_with_pop(5.0e4, 0.004), tmp_path / "scene.toml"))
+    traj = default_run(model)
+    net = model.network
+    assert net.popped == [True] and net.holding_since == [traj.events[0][0]] and net.area_at_activation == [5e-4]
+    t_pop, t_open = traj.events[0][0], traj.events[1][0]
+    assert traj.mode_at(0.5 * t_pop)[:2] == ((False,), (None,))
+    assert traj.mode_at(0.5 * (t_pop + t_open))[:3] == ((False,), (t_pop,), (None,))
+    assert traj.mode_at(t_open)[:3] == ((True,), (t_pop,), (5e-4,))
+
+
+@pytest.mark.parametrize("law", LAWS, ids=[law["law"] for law in LAWS])
+@pytest.mark.parametrize("two_way, to_cavity", [(False, False), (True, False), (False, True)])
+def test_fabric_and_resistance_laws_are_the_same_on_both_paths(tmp_path, law, two_way, to_cavity):
+    model = build_model(scene_from_dict(law_scene(tmp_path, law, two_way, to_cavity), tmp_path / "scene.toml"))
+    traj = assert_same_on_both_paths(model)
+    assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
+    assert run(model).summary["solver"]["path"] == "compiled"
+
+
+GRID = [(p_up, p_down, T, gamma) for p_up in (1.0e5, 2.0e5, 7.3e5) for p_down in (0.5e5, 1.0e5, 1.99999e5, 2.5e5)
+        for T in (250.0, 600.0) for gamma in (1.3, 1.4, 1.667)] + [(2.0e5, 2.0e5 * (1 - 3e-5), 300.0, 1.4),
+                                                                 (2.0e5, 2.0e5 * (1 - 1e-4), 300.0, 1.4)]
+
+
+def test_jitted_fabric_laws_equal_the_pure_functions():
+    from exchange import compiled_laws, fabric
+
+    for p_up, p_down, T, gamma in GRID:
+        for area, cd, phi in ((1e-4, 0.6, 0.5), (3e-3, 1.0, 1.0), (0.0, 0.7, 0.3)):
+            args = (p_up, T, p_down, 287.0, gamma, area, cd, phi)
+            want = fabric.fabric_leakage_mass_flow(*args)
+            assert compiled_laws.fabric_leakage_mass_flow(*args) == pytest.approx(want, rel=1e-13, abs=0.0), args
+            args = (p_up, p_down, p_up / (287.0 * T), area, cd, phi)
+            want = fabric.graefe_mass_flow(*args)
+            assert compiled_laws.graefe_mass_flow(*args) == pytest.approx(want, rel=1e-13, abs=0.0), args
+            args = (p_up, T, p_down, 287.0, gamma, area, cd)
+            want = orifice.orifice_mass_flow(*args)
+            assert compiled_laws.orifice_mass_flow(*args) == pytest.approx(want, rel=1e-13, abs=0.0), args
+
+
+def test_jitted_right_hand_side_with_pop_fabric_graefe_equals_network_rhs(tmp_path):
+    """The fabric/Graefe/orifice scene with a pop vent: the compiled RHS in each segment's discrete state (as
+    CompiledNetwork.run sets it from the network) equals Network.rhs."""
+    model = build_model(scene_from_dict(fabric_pop_between_cavities(tmp_path), tmp_path / "scene.toml"))
+    net, fast = model.network, model.network.compiled_solver()
+    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
+    for t in np.linspace(0.0, model.scene.time.end, 41)[1:-1]:
+        y = traj(t)
+        net.restore(traj.mode_at(t))
+        fast.model[20][:] = net.equalised
+        fast.model[21][:] = [0 if ex.activation and ex.activation.pop_pressure is not None and not p else 1
+                             for ex, p in zip(net.exchanges, net.popped)]
+        expected = net.rhs(t, y)
+        got = np.empty_like(y)
+        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
+        assert compiled_rhs(fast.model, t, y, got, math.inf)
+        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * np.abs(expected).max()), (t, got - expected)

@@ -1,0 +1,55 @@
+"""The discrete state of a lowered network on the compiled path: which switches are watched, what a switch
+does, and the state recorded per segment.
+
+Mirrors of :meth:`exchange.network.Network.events` (which switches exist in the current state),
+:meth:`~exchange.network.Network.on_event` and :meth:`~exchange.network.Network.snapshot`. The state lives in the
+model tuple of :class:`exchange.compiled.CompiledNetwork`: ``M[20]`` equalised flags, ``M[21]`` 0 while a pop vent
+has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`` and ``M[13]`` are the exchanges'
+``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`). Switch kinds: 0 choke, 1 one-way reversal, 2 equalise,
+3 release, 4 pop, 5 pop-drop, 6 pop-hold.
+"""
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+__all__ = ["watched", "on_event", "record_segment"]
+
+
+@njit(cache=True)
+def watched(M, kind, j):
+    """Switch (kind, exchange j) is one of :meth:`Network.events` in the current discrete state: equalise while
+    open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped."""
+    eq, op, hold = M[20], M[21], M[22]
+    if kind == 2 or kind == 3:
+        return eq[j] == (1 if kind == 3 else 0)
+    if kind >= 4:
+        return op[j] == 0 and (math.isnan(hold[j]) if kind == 4 else not math.isnan(hold[j]))
+    return True
+
+
+@njit(cache=True)
+def on_event(M, kind, j, t):
+    """:meth:`Network.on_event`: equalise holds the exchange closed, release opens it; a pop crossing starts the
+    hold (or pops at once without a hold time), a drop re-arms, the hold's end pops."""
+    if kind == 2 or kind == 3:
+        M[20][j] = 1 if kind == 2 else 0
+    elif kind == 4 and M[13][j, 5] > 0.0:
+        M[22][j] = t
+    elif kind == 5:
+        M[22][j] = math.nan
+    elif kind >= 4:
+        M[21][j] = 1
+
+
+@njit(cache=True)
+def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
+    """Row nseg of the segment table: first record, end record, t_min, t_max, mode code (bits: equalised), then
+    per exchange popped (pop vents only), then per exchange the hold start [s] (NaN: none)."""
+    ei, op, hold = M[12], M[21], M[22]
+    ne = op.size
+    segs[nseg, 0], segs[nseg, 1], segs[nseg, 2], segs[nseg, 3], segs[nseg, 4] = first, end, t_min, t_max, mode
+    for j in range(ne):
+        segs[nseg, 5 + j] = 1.0 if ei[j, 6] == 1 and op[j] == 1 else 0.0
+        segs[nseg, 5 + ne + j] = hold[j]
