@@ -23,7 +23,7 @@ from cavity.integration import SolverError, integrate
 from exchange import orifice
 from exchange.compiled_rhs import orifice_mass_flow
 from exchange.compiled_solver import rhs as compiled_rhs
-from tests.scenes import tank
+from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
 
 LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
@@ -120,14 +120,20 @@ def test_equalised_mode_is_the_same_on_both_paths(tmp_path, p0, end):
     assert np.max(np.abs(pressures(model, fast_traj, times) / pressures(model, slow_traj, times) - 1)) < 1e-8
 
 
-def test_release_reopens_an_equalised_exchange(tmp_path):
-    """A tank at ambient (equalised from the start) is pressurised by an inflator from 10 ms: the vent opens."""
-    (tmp_path / "late.csv").write_text("t,mdot\n0,0\n0.01,0\n0.011,0.1\n0.05,0.1\n")
+def late_inflation(folder: Path):
+    """The model of a tank at ambient (its two-way vent equalised from the start) that an inflator pressurises from
+    10 ms (late.csv written into ``folder``)."""
+    (folder / "late.csv").write_text("t,mdot\n0,0\n0.01,0\n0.011,0.1\n0.05,0.1\n")
     data = tank()
     data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "late.csv",
                                       "temperature": 300.0, "gas": {"N2": 1.0}}]
     data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4, "two_way": True}]
-    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    return build_model(scene_from_dict(data, folder / "scene.toml"))
+
+
+def test_release_reopens_an_equalised_exchange(tmp_path):
+    """A tank at ambient (equalised from the start) is pressurised by an inflator from 10 ms: the vent opens."""
+    model = late_inflation(tmp_path)
     fast_traj, slow_traj = both_paths(model)
     for traj in (fast_traj, slow_traj):
         assert [label for _, label in traj.events][:1] == ["vent:release"]
@@ -215,12 +221,7 @@ def test_compiled_history_of_a_two_way_vent_that_equalises(tmp_path, p0, end):
 
 
 def test_compiled_history_of_a_vent_released_from_equalised(tmp_path):
-    (tmp_path / "late.csv").write_text("t,mdot\n0,0\n0.01,0\n0.011,0.1\n0.05,0.1\n")
-    data = tank()
-    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "late.csv",
-                                      "temperature": 300.0, "gas": {"N2": 1.0}}]
-    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4, "two_way": True}]
-    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    model = late_inflation(tmp_path)
     traj = default_run(model)
     assert traj.modes[0][3] == (True,) and traj.events[0][1] == "vent:release"
     assert_same_history(model, traj, np.union1d(np.linspace(0.0, 0.1, 101), [t for t, _ in traj.events]))
@@ -256,20 +257,6 @@ def test_the_python_path_keeps_the_row_by_row_history():
 
 
 # ---- pop vents (pop, pop-drop, pop-hold) and the fabric / Graefe / linear-resistance laws on the compiled path
-
-def pop_hold_reset(folder: Path) -> dict:
-    """tests/test_exchange_scenes.py::test_pop_hold_resets_when_pressure_drops_back: a spike shorter than the
-    hold time; the vent pops (hold starts), drops back (re-armed) and never opens."""
-    (folder / "spike.csv").write_text("t,mdot\n0,0\n0.001,10.0\n0.004,10.0\n0.005,0\n")
-    data = tank()
-    data["time"] = {"end": 0.05, "output_interval": 0.001}
-    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "spike.csv",
-                                      "temperature": 300.0, "gas": {"N2": 1.0}}]
-    data["exchange"] = [{"name": "leak", "from": "tank", "area": 1e-4, "law": "linear_resistance",
-                         "conductance": 1.0},
-                        {"name": "vent", "from": "tank", "area": 5e-4, "pop_pressure": 3e4, "pop_hold_time": 0.02}]
-    return data
-
 
 def fabric_pop_between_cavities(folder: Path) -> dict:
     """An inflated tank pops (after a hold) into a second tank through fabric; the second leaks to ambient through

@@ -17,5 +17,6 @@ def test_the_docs_have_runnable_examples():
 
 @pytest.mark.parametrize("md,index,code", EXAMPLES, ids=[f"{md.name}#{i}" for md, i, _ in EXAMPLES])
 def test_doc_example_runs(md, index, code, monkeypatch):
+    assert "assert " in code, f"{md.name}#{index}: a doc example must check the figures it shows"
     monkeypatch.chdir(ROOT)
     exec(compile(code, f"{md.name}#{index}", "exec"), {"__name__": "doc_example"})

@@ -8,7 +8,7 @@ from cases.build import build_model
 from cases.errors import SceneError
 from cases.runner import run
 from cases.scene import scene_from_dict
-from tests.scenes import tank
+from tests.scenes import pop_hold_reset, tank
 
 R_U = 8.314462618
 M_N2, CP_N2 = 0.0280134, 29.100619163
@@ -101,15 +101,7 @@ def test_pop_vent_opens_at_the_closed_form_time(hold):
 
 def test_pop_hold_resets_when_pressure_drops_back(tmp_path):
     """A pressure spike shorter than the hold time does not open the vent."""
-    (tmp_path / "spike.csv").write_text("t,mdot\n0,0\n0.001,10.0\n0.004,10.0\n0.005,0\n")
-    data = tank()
-    data["time"] = {"end": 0.05, "output_interval": 0.001}
-    data["cavity"][0]["inflator"] = [{"name": "gen", "type": "mass_temperature", "mass_flow": "spike.csv",
-                                      "temperature": 300.0, "gas": {"N2": 1.0}}]
-    data["exchange"] = [{"name": "leak", "from": "tank", "area": 1e-4, "law": "linear_resistance",
-                         "conductance": 1.0},
-                        {"name": "vent", "from": "tank", "area": 5e-4, "pop_pressure": 3e4, "pop_hold_time": 0.02}]
-    r = run_dict(data, tmp_path)
+    r = run_dict(pop_hold_reset(tmp_path), tmp_path)
     labels = [label for _, label in r.summary["solver"]["event log"] if label.startswith("vent:")]
     assert labels[:2] == ["vent:pop", "vent:pop-drop"] and "vent:pop-hold" not in labels
     assert np.all(r.column("vent.mass_flow") == 0.0)
