@@ -5,7 +5,7 @@ from __future__ import annotations
 from cavity.tables import TableError
 
 from .errors import SceneError
-from .schema import suggest
+from .schema import unknown_name
 from .tables_io import read_table
 
 __all__ = ["check_cross_references"]
@@ -46,8 +46,7 @@ def check_cross_references(scene: Scene, path) -> None:
     for i, e in enumerate(scene.exchange):
         for side, value in (("from", e.from_), ("to", e.to)):
             if value not in names and not (side == "to" and value == "ambient"):
-                raise SceneError(path, f"exchange[{i}].{side}", f"no cavity named {value!r}"
-                                                                f"{suggest(value, names + ['ambient'])}")
+                raise unknown_name(path, f"exchange[{i}].{side}", "cavity", value, names + ["ambient"])
         if e.from_ == e.to:
             raise SceneError(path, f"exchange[{i}].to", "an exchange joins two different sides")
         _check_exchange(scene, e, path, f"exchange[{i}]")
@@ -83,8 +82,7 @@ def _check_bodies(scene: Scene, path) -> None:
             raise SceneError(path, f"body[{i}].pressure_cavity", "give pressure_area and pressure_cavity together")
         cavities = [c.name for c in scene.cavity]
         if b.pressure_cavity and b.pressure_cavity not in cavities:
-            raise SceneError(path, f"body[{i}].pressure_cavity", f"no cavity named {b.pressure_cavity!r}"
-                                                                 f"{suggest(b.pressure_cavity, cavities)}")
+            raise unknown_name(path, f"body[{i}].pressure_cavity", "cavity", b.pressure_cavity, cavities)
     if sum(1 for b in scene.body if b.mass) > 1:
         raise SceneError(path, "body", "at most one dynamic body (mass > 0) per scene")
     if any(b.mass for b in scene.body):
@@ -96,7 +94,7 @@ def _check_bodies(scene: Scene, path) -> None:
     for where, used in refs:
         for n in used:
             if n not in names:
-                raise SceneError(path, where, f"no body named {n!r}{suggest(n, names)}")
+                raise unknown_name(path, where, "body", n, names)
 
 
 def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .errors import SceneError
-from .schema import key, suggest
+from .schema import key, unknown_name
 
 __all__ = ["ContactSpec", "PRESSURE_OVERCLOSURES", "DAMPING_DEFINITIONS", "check_contacts"]
 
@@ -58,7 +58,7 @@ def check_contacts(scene, path, raw: dict) -> None:
         where, given = f"contact[{i}]", set(raw_contacts[i])
         body = bodies.get(c.body)
         if body is None:
-            raise SceneError(path, f"{where}.body", f"no body named {c.body!r}{suggest(c.body, bodies)}")
+            raise unknown_name(path, f"{where}.body", "body", c.body, bodies)
         if not body.mass:
             raise SceneError(path, f"{where}.body", f"body {c.body!r} is not dynamic (mass > 0): a prescribed "
                                                     "body needs no contact force")
@@ -76,7 +76,7 @@ def _check_seat(scene, c, path, where, exchanges) -> None:
     if c.seat:
         e = exchanges.get(c.seat)
         if e is None:
-            raise SceneError(path, f"{where}.seat", f"no exchange named {c.seat!r}{suggest(c.seat, exchanges)}")
+            raise unknown_name(path, f"{where}.seat", "exchange", c.seat, exchanges)
         if not e.leakage_surface:
             raise SceneError(path, f"{where}.seat", f"exchange {c.seat!r} has no leakage_surface (the seat must be "
                                                     "a fixed surface of its own)")

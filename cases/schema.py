@@ -41,6 +41,12 @@ def suggest(name: str, known) -> str:
     return f" (did you mean {' or '.join(repr(c) for c in close)}?)" if close else ""
 
 
+def unknown_name(path, where: str, kind: str, value: str, known) -> SceneError:
+    """The error for a reference to a ``kind`` (cavity, body, exchange) that the scene does not define, with the
+    closest defined name as a suggestion."""
+    return SceneError(path, where, f"no {kind} named {value!r}{suggest(value, known)}")
+
+
 def parse(cls, table, file, where: str, *, nested: dict | None = None):
     """Build ``cls`` from the TOML table ``table``; raise :class:`SceneError` naming file and key on any problem.
 
