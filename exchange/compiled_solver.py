@@ -126,37 +126,34 @@ def root_on_step(M, kind, j, rec, n, xa, xb, seg_end):
 
 
 @njit(cache=True)
+def _combination(y, h, weights, K, count, out):
+    """out = y + h·Σ_{r < count} weights[r]·K[r] (a Runge–Kutta stage state, summed in scipy's order)."""
+    for i in range(y.size):
+        acc = 0.0
+        for r in range(count):
+            acc += weights[r] * K[r, i]
+        out[i] = y[i] + h * acc
+
+
+@njit(cache=True)
 def _stages(M, t, y, h, K, ytmp, y_new, seg_end, stats):
     """The 12 stages and the new state of one DOP853 step; K[12] = f(t + h, y_new). False if the RHS failed."""
-    n = y.size
     for s in range(1, N_STAGES):
-        for i in range(n):
-            acc = 0.0
-            for r in range(s):
-                acc += A[s, r] * K[r, i]
-            ytmp[i] = y[i] + h * acc
+        _combination(y, h, A[s], K, s, ytmp)
         stats[0] += 1
         if not rhs(M, t + C[s] * h, ytmp, K[s], seg_end):
             return False
-    for i in range(n):
-        acc = 0.0
-        for s in range(N_STAGES):
-            acc += B[s] * K[s, i]
-        y_new[i] = y[i] + h * acc
+    _combination(y, h, B, K, N_STAGES, y_new)
     stats[0] += 1
     return rhs(M, t + h, y_new, K[N_STAGES], seg_end)
 
 
 @njit(cache=True)
 def _dense_stages(M, t, y, h, K, ytmp, seg_end, stats):
-    n = y.size
+    """The three extra stages of DOP853's dense output, into K[13..15]. False if the RHS failed."""
     for e in range(3):
         s = N_STAGES + 1 + e
-        for i in range(n):
-            acc = 0.0
-            for r in range(s):
-                acc += A_EXTRA[e, r] * K[r, i]
-            ytmp[i] = y[i] + h * acc
+        _combination(y, h, A_EXTRA[e], K, s, ytmp)
         stats[0] += 1
         if not rhs(M, t + C_EXTRA[e] * h, ytmp, K[s], seg_end):
             return False
