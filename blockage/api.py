@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from blockage import areas, edges
+from blockage import areas, edges, sides
 from blockage.blocker import Blocker, Proximity
 from blockage.surfaces import LeakageSurface
 from blockage.validation import as_cutoff, as_points, as_tolerance, as_transform
@@ -215,6 +215,22 @@ def edge_distances(surface, placed, cutoff):
     return distances
 
 
+def penetrated(points, placed, surface=None, open_depth=0.0) -> np.ndarray:
+    """(n,) bool: points inside a closed blocker, or behind an open one's interior within ``open_depth`` [m]
+    (:mod:`blockage.sides`); a blocker that is the leak's own surface (self-contact) is skipped."""
+    inside = np.zeros(len(points), dtype=bool)
+    for blocker, transform in placed:
+        if surface is not None and surface.source is not None and blocker.source is surface.source:
+            continue
+        inside |= sides.penetrating(blocker, points, transform, open_depth)
+    return inside
+
+
+def _open_depth(penetration) -> float:
+    """Depth [m] behind an open blocker that counts as contact (``penetration`` given as a number)."""
+    return 0.0 if isinstance(penetration, bool) else as_cutoff(penetration)
+
+
 def _check_options(effective_area, permeability):
     if effective_area is not None:
         effective_area = as_tolerance(effective_area, "effective_area")
@@ -253,7 +269,7 @@ def blockage_result(surface, active, proximity, tolerance, effective_area=None, 
 
 
 def evaluate(leak, blockers, tolerance, *, effective_area=None, edge_contact=False, permeability=0.0,
-             cutoff=None):
+             cutoff=None, penetration=True):
     """Active blockage nodes and leakage area of an element-based leakage surface.
 
     Parameters
@@ -277,6 +293,11 @@ def evaluate(leak, blockers, tolerance, *, effective_area=None, edge_contact=Fal
     cutoff : float, optional
         Report exact distances up to this radius [m] (default: the tolerance;
         ``np.inf`` for all nodes, slower).
+    penetration : bool or float
+        True (default): nodes inside a closed blocker are active at any depth;
+        a float [m]: also nodes behind an open blocker's interior (against the
+        pseudonormal of their closest point) up to that depth; False: the
+        distance rule only.
 
     Returns
     -------
@@ -289,13 +310,16 @@ def evaluate(leak, blockers, tolerance, *, effective_area=None, edge_contact=Fal
     placed = placed_blockers(blockers)
     proximity = nearest_blocking(surface.vertices, placed, cutoff, surface)
     active = proximity.distances <= tolerance
+    if penetration:
+        far = np.flatnonzero(~active)
+        active[far[penetrated(surface.vertices[far], placed, surface, _open_depth(penetration))]] = True
     if edge_contact and len(surface.edges):
         active |= edges.edge_active_nodes(surface.edges, edge_distances(surface, placed, tolerance), tolerance,
                                           len(surface.vertices))
     return blockage_result(surface, active, proximity, tolerance, effective_area, permeability)
 
 
-def evaluate_nodes(points, blockers, tolerance, *, cutoff=None):
+def evaluate_nodes(points, blockers, tolerance, *, cutoff=None, penetration=True):
     """Active nodes and blocked fraction of a node-based leakage surface.
 
     Parameters
@@ -307,6 +331,8 @@ def evaluate_nodes(points, blockers, tolerance, *, cutoff=None):
         Contact tolerance [m].
     cutoff : float, optional
         Report exact distances up to this radius [m] (default: the tolerance).
+    penetration : bool or float
+        As for :func:`evaluate`.
 
     Returns
     -------
@@ -321,6 +347,10 @@ def evaluate_nodes(points, blockers, tolerance, *, cutoff=None):
     points = as_points(points)
     tolerance = as_tolerance(tolerance)
     cutoff = tolerance if cutoff is None else max(as_cutoff(cutoff), tolerance)
-    proximity = nearest_blocking(points, placed_blockers(blockers), cutoff)
+    placed = placed_blockers(blockers)
+    proximity = nearest_blocking(points, placed, cutoff)
     active = proximity.distances <= tolerance
+    if penetration:
+        far = np.flatnonzero(~active)
+        active[far[penetrated(points[far], placed, None, _open_depth(penetration))]] = True
     return NodeBlockageResult(active, proximity.distances, proximity.closest_points, areas.blocked_fraction(active))

@@ -35,8 +35,9 @@ def test_evaluate_equals_reference_on_random_scenes(leak, other, tolerance, quad
     vertices, faces = grid_surface(3, 2, size=(2.0, 2.0), quads=quads)
     vent = LeakageSurface(vertices - [1.0, 1.0, 0.0], faces)
     for surface in (leak, vent):
-        fast = evaluate(surface, [other], tolerance, edge_contact=edge_contact)
-        slow = evaluate_reference(surface, [other], tolerance, edge_contact=edge_contact)
+        # random meshes self-intersect: inside/outside is meaningless there (tests/blockage/test_penetration.py)
+        fast = evaluate(surface, [other], tolerance, edge_contact=edge_contact, penetration=False)
+        slow = evaluate_reference(surface, [other], tolerance, edge_contact=edge_contact, penetration=False)
         assert_same_result(fast, slow)
 
 
