@@ -8,8 +8,9 @@ from cavity.volume import closed_mesh_volume, MeshError
 
 from .bodies import Body, DynamicMotion, PrescribedMotion, VertexTrajectory, unit
 from .errors import SceneError
-from .geometry import Wrapper, blocked_area_track, rigid_batched_gaps, wrapped_volume
-from .scene_network import BodyState, GeometricArea
+from .build_leak import build_leak_area
+from .geometry import Wrapper, wrapped_volume
+from .scene_network import BodyState
 from .tables_io import read_table
 
 __all__ = ["build_bodies", "Driver", "build_wrapped_volume", "build_leak_area", "load_mesh", "build_contact"]
@@ -122,46 +123,6 @@ def build_wrapped_volume(scene, i, mesh, driver: Driver):
         raise SceneError(scene.path, f"cavity[{i}].wrapped_by", "with a dynamic body, it must be among wrapped_by")
     st = driver.state
     return wrapped_volume(mesh, wrapper, driver.lo, driver.hi, lambda t: st.s, lambda t: st.v)
-
-
-def build_leak_area(scene, j, cavity_meshes: dict, driver: Driver):
-    """The GeometricArea of exchange j (or None when it has a plain area)."""
-    e, where = scene.exchange[j], f"exchange[{j}]"
-    if not (e.leakage_surface or e.leakage_box):
-        return None, None
-    wrap, cav = None, None
-    if e.leakage_surface:
-        try:
-            surface = blockage.LeakageSurface.read(scene.base / e.leakage_surface)
-        except Exception as exc:
-            raise SceneError(scene.path, f"{where}.leakage_surface", f"cannot read {e.leakage_surface!r}: {exc}") \
-                from None
-    else:
-        mesh = cavity_meshes[e.from_]
-        lo, hi = np.array(e.leakage_box[:3]), np.array(e.leakage_box[3:])
-        try:
-            surface = blockage.LeakageSurface.from_region(mesh, box=(lo, hi))
-        except ValueError as exc:
-            raise SceneError(scene.path, f"{where}.leakage_box", str(exc)) from None
-        cav = next(c for c in scene.cavity if c.name == e.from_)
-        if cav.wrapped_by:
-            wrap = driver.wrapper(cav.wrapped_by)
-    base = surface.vertices.copy()
-    def positions(theta, nodes=None):
-        x = base if nodes is None else base[nodes]
-        return wrap.place(x, theta) if wrap is not None else x
-
-    eff = e.effective_area or None
-    tol = e.contact_tolerance or 1e-300
-    batched = None
-    bodies = [driver.bodies[n] for n in e.blocked_by]
-    wrapped = set(cav.wrapped_by) if wrap is not None else set()
-    if not any(b.deforming for b, _ in bodies) and (not wrapped or (len(bodies) == 1 and wrapped == {bodies[0][0].name})):
-        batched = rigid_batched_gaps(base, bodies, lambda body, th: driver.placement(body.name, th)[1],
-                                     bool(wrapped), 4.0 * tol)
-    track = blocked_area_track(surface, positions, driver.placed(e.blocked_by), tol, driver.lo, driver.hi,
-                               effective_area=eff, permeability=e.permeability, batched=batched)
-    return GeometricArea(track, driver.dynamic is None), (surface, positions)
 
 
 def cavity_mesh(scene, i):

@@ -1,34 +1,23 @@
-"""Geometry that moves with the bodies: wrapped cavity volume and blocked leakage area along a parameter θ.
+"""Cavity volume wrapped around moving bodies, along a parameter θ.
 
-θ is time for prescribed motion and the driving body's displacement for a dynamic body. Everything geometric is
-computed before integration:
-
-* the cavity volume V(θ) of a mesh whose nodes a convex body would penetrate are placed on the body's surface
-  (the closest point, exact), sampled on a grid and interpolated by a C² cubic spline, with dV/dθ from the
-  spline;
-* for each blocked exchange, the values of θ at which a leakage node's exact gap crosses the contact tolerance
-  (found on a grid, then to machine precision by Brent's method on that node's gap), and the leakage area on
-  each interval between them (``blockage.evaluate`` at the interval's midpoint). The area is piecewise constant
-  in θ, and its jumps are integration breakpoints (prescribed) or switch events (dynamic).
+θ is time for prescribed motion and the driving body's displacement for a dynamic body. The cavity volume V(θ)
+of a mesh whose nodes a convex body would penetrate are placed on the body's surface (the closest point, exact) is
+sampled on a grid and interpolated by a C² cubic spline, with dV/dθ from the spline. Leakage areas along θ are
+:mod:`cases.area_track` (from the certified crossings of :mod:`cases.crossings`).
 """
 from __future__ import annotations
 
-import bisect
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import CubicSpline
-from scipy.optimize import brentq
 
-import blockage
 from cavity.volume import mesh_volume
 
-__all__ = ["Wrapper", "BlockedArea", "WrappedVolume", "blocked_area_track", "GRID_POINTS"]
+__all__ = ["Wrapper", "WrappedVolume", "wrapped_volume", "GRID_POINTS"]
 
-#: Samples of θ used to find gap crossings and to fit the volume spline.
+#: Samples of θ used to fit the volume spline.
 GRID_POINTS = 401
-#: Crossings closer than this fraction of the θ range are one switch.
-MERGE_CROSSINGS = 1e-12
 
 
 def behind_closest_face(points, closest, normals) -> np.ndarray:
@@ -146,152 +135,3 @@ def _rigid_placements(wrapper: Wrapper, grid, x0):
         R, t = T[g_in, :3, :3], T[g_in, :3, 3]
         out[g_in, n_in] = np.einsum("kij,kj->ki", R, cp) + t
     return out
-
-
-@dataclass
-class BlockedArea:
-    """Leakage area of one exchange, piecewise constant in θ.
-
-    ``crossings`` are sorted θ values where the active set changes; ``areas[i]`` holds on
-    [crossings[i-1], crossings[i]) (areas[0] before the first); ``first_active`` is θ of the first contact.
-    """
-
-    crossings: np.ndarray
-    areas: np.ndarray
-    total_area: float
-    actives: list = field(default_factory=list)  # active-node count per interval
-
-    def __call__(self, theta: float) -> float:
-        return float(self.areas[bisect.bisect_right(self.crossings, theta)])
-
-    def neighbours(self, theta: float) -> tuple:
-        """The crossings just below and just above θ (±inf when none)."""
-        i = bisect.bisect_right(self.crossings, theta)
-        below = self.crossings[i - 1] if i > 0 else -np.inf
-        above = self.crossings[i] if i < len(self.crossings) else np.inf
-        return below, above
-
-
-def batched_roots(batched, nodes, a, b, tolerance, cutoff, iterations=200):
-    """Roots of gap_i(θ) = tolerance for many (node, bracket) pairs at once (Illinois regula falsi).
-
-    Each iteration evaluates every unresolved pair in one batched query; a pair stops when its bracket is
-    within a few ulp. Returns the θ of each pair where the node's status changes.
-    """
-    a, b = a.astype(float).copy(), b.astype(float).copy()
-    fa = np.minimum(batched(a, nodes), cutoff) - tolerance
-    fb = np.minimum(batched(b, nodes), cutoff) - tolerance
-    side = np.zeros(len(a))
-    for _ in range(iterations):
-        open_ = np.abs(b - a) > 4.0 * np.finfo(float).eps * np.maximum(np.abs(a), np.abs(b)) + 1e-300
-        if not open_.any():
-            break
-        idx = np.flatnonzero(open_)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            c = (a[idx] * fb[idx] - b[idx] * fa[idx]) / (fb[idx] - fa[idx])
-        bad = ~np.isfinite(c) | (c <= np.minimum(a[idx], b[idx])) | (c >= np.maximum(a[idx], b[idx]))
-        c[bad] = 0.5 * (a[idx][bad] + b[idx][bad])
-        fc = np.minimum(batched(c, nodes[idx]), cutoff) - tolerance
-        left = np.sign(fc) == np.sign(fa[idx])  # root in [c, b]
-        i_l, i_r = idx[left], idx[~left]
-        a[i_l], fa[i_l] = c[left], fc[left]
-        fb[i_l] = np.where(side[i_l] == 1, fb[i_l] / 2, fb[i_l])  # Illinois: halve the stale end
-        side[i_l] = 1
-        b[i_r], fb[i_r] = c[~left], fc[~left]
-        fa[i_r] = np.where(side[i_r] == -1, fa[i_r] / 2, fa[i_r])
-        side[i_r] = -1
-    return 0.5 * (a + b)
-
-
-def rigid_batched_gaps(points, bodies, placements, wrapping, cutoff):
-    """gap(θ_i) of node i for many (θ_i, node_i) pairs at once, for rigid bodies [m].
-
-    Each query point is moved into the body's own frame (T(θ_i)⁻¹ applied per point), so one tree query
-    serves all pairs. With ``wrapping`` the surface wraps the body: a node inside it lies on its surface (gap 0).
-    """
-    def inside(body, blocker, local):
-        """Which local points lie inside the (convex) body: sign of the offset along the closest face normal."""
-        sphere = body.mesh.bounding_sphere.primitive
-        cand = np.flatnonzero(np.linalg.norm(local - sphere.center, axis=1) <= sphere.radius)
-        out = np.zeros(len(local), dtype=bool)
-        if cand.size:
-            prox = blocker.distances(local[cand], cutoff=2.0 * sphere.radius)
-            normals = body.mesh.face_normals[prox.faces]
-            out[cand] = behind_closest_face(local[cand], prox.closest_points, normals)
-        return out
-
-    def gaps(thetas, nodes):
-        x = points[nodes]
-        g = np.full(len(x), np.inf)
-        unique, which = np.unique(thetas, return_inverse=True)
-        for body, blocker in bodies:
-            T = np.array([placements(body, th) for th in unique])[which.ravel()]
-            local = np.einsum("nji,nj->ni", T[:, :3, :3], x - T[:, :3, 3])
-            d = blocker.distances(local, cutoff=cutoff).distances
-            if wrapping:
-                far = np.flatnonzero(~np.isfinite(d))
-                d[far[inside(body, blocker, local[far])]] = 0.0
-                near = np.flatnonzero(np.isfinite(d) & (d > 0))
-                d[near[inside(body, blocker, local[near])]] = 0.0
-            g = np.minimum(g, d)
-        return g
-    return gaps
-
-
-def blocked_area_track(surface, node_positions, blockers, tolerance, lo, hi, *, effective_area=None,
-                       permeability=0.0, batched=None) -> BlockedArea:
-    """Find the gap crossings of every leakage node on θ ∈ [lo, hi] and the leakage area between them.
-
-    Parameters
-    ----------
-    surface : blockage.LeakageSurface
-        The leakage surface at θ = lo (its faces; vertices are given by ``node_positions``).
-    node_positions : callable (θ, nodes or None) -> (n, 3)
-        Coordinates [m] of the leakage nodes ``nodes`` (all when None) at θ (moved, e.g. wrapped around a body).
-    blockers : callable θ -> list of (Blocker, 4x4)
-        The blocking bodies placed at θ.
-    batched : callable (θ (k,), nodes (k,)) -> gaps (k,), optional
-        The same gaps evaluated for many pairs in one query (rigid bodies): used for the grid and the roots.
-    tolerance : float
-        Contact tolerance [m].
-    """
-    cutoff = 4.0 * tolerance
-
-    def gaps(theta, nodes=None):
-        x = node_positions(theta, nodes)
-        g = np.full(len(x), np.inf)
-        for blocker, T in blockers(theta):
-            g = np.minimum(g, blocker.distances(x, cutoff=cutoff, transform=T).distances)
-        return g
-
-    grid = np.linspace(lo, hi, GRID_POINTS)
-    if batched is not None:
-        n = len(surface.vertices)
-        inside = batched(np.repeat(grid, n), np.tile(np.arange(n), len(grid))).reshape(len(grid), n) <= tolerance
-    else:
-        inside = np.array([gaps(th) <= tolerance for th in grid])  # (grid, nodes)
-    pairs = np.argwhere(inside[1:] != inside[:-1])
-    if batched is not None and len(pairs):
-        roots = list(batched_roots(batched, pairs[:, 1], grid[pairs[:, 0]], grid[pairs[:, 0] + 1], tolerance,
-                                   cutoff))
-    else:
-        roots = []
-        for i, node in pairs:
-            def excess(th, node=node):  # gap − tolerance, finite beyond the cutoff so Brent's method can use it
-                return min(gaps(th, [node])[0], cutoff) - tolerance
-
-            roots.append(brentq(excess, grid[i], grid[i + 1], xtol=1e-15, rtol=8.9e-16))
-    crossings = np.sort(roots)
-    if len(crossings):  # nodes that cross together (a column of a grid) give roots a few ulp apart: one event
-        keep = np.diff(crossings, prepend=-np.inf) > MERGE_CROSSINGS * (hi - lo)
-        crossings = crossings[keep]
-    edges = np.concatenate([[lo], crossings, [hi]])
-    areas, actives = [], []
-    for a, b in zip(edges[:-1], edges[1:]):
-        mid = 0.5 * (a + b)
-        leak = surface.with_vertices(node_positions(mid, None))
-        res = blockage.evaluate(leak, blockers(mid), tolerance, effective_area=effective_area,
-                                permeability=permeability)
-        areas.append(res.leak_area)
-        actives.append(int(res.active_nodes.sum()))
-    return BlockedArea(crossings, np.array(areas), surface.total_area, actives)

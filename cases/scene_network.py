@@ -1,7 +1,7 @@
 """The network of a scene with bodies: geometric leakage areas, wrapped volumes and a dynamic impactor.
 
 Extends :class:`exchange.network.Network` with two unknowns per dynamic body (displacement s [m] and speed v
-[m/s] along its axis) and with exchanges whose area comes from a :class:`cases.geometry.BlockedArea`. For
+[m/s] along its axis) and with exchanges whose area comes from a :class:`cases.area_track.AreaTrack`. For
 prescribed motion the area's jumps are known times (breakpoints); for a dynamic body they are switch
 functions s − s_k on the two crossings next to the body's current displacement.
 
@@ -22,6 +22,11 @@ from scipy.optimize import brentq
 from exchange.network import Network, _labelled
 
 __all__ = ["SceneNetwork", "BodyState", "GeometricArea", "BodyForces"]
+
+
+#: A dynamic body's area interval is re-derived from its displacement at a restart when the displacement lies
+#: outside the interval by more than this fraction of the track's range of θ.
+REDERIVE_SLACK = 1e-7
 
 
 @dataclass(frozen=True)
@@ -45,7 +50,7 @@ class BodyState:
 
 @dataclass(frozen=True)
 class GeometricArea:
-    """The leakage area of one exchange from a BlockedArea track; ``by_time``: θ is time, else θ is s."""
+    """The leakage area of one exchange from an AreaTrack; ``by_time``: θ is time, else θ is s."""
 
     track: object
     by_time: bool
@@ -147,7 +152,7 @@ class SceneNetwork(Network):
             return super().base_area(index, t)
         if ga.by_time:
             return ga.track(t)
-        return float(ga.track.areas[self.intervals[index]])
+        return ga.track.area_in(self.intervals[index], self.body_state.s)
 
     def rhs(self, t, y):
         dy = super().rhs(t, y)  # states() has set body_state from y
@@ -198,8 +203,32 @@ class SceneNetwork(Network):
             out.append(_labelled(lambda t, y, s_k=s_k: (y[k] - s_k) / c.size, f"{c.name}:kink-{i}"))
         return out
 
+    def begin_segment(self, t0, t1, y0=None):
+        super().begin_segment(t0, t1, y0)
+        if y0 is not None and self.body is not None:
+            self._rederive_intervals(float(y0[self.body_offset]))
+
+    def _rederive_intervals(self, s: float) -> None:
+        """Make each area interval hold the body's displacement s (a crossing passed inside the step of a
+        turning point is caught here, at the restart, so a release is never missed)."""
+        for j, ga in enumerate(self.areas):
+            if ga is None or ga.by_time:
+                continue
+            below, above = ga.track.crossings[:self.intervals[j]], ga.track.crossings[self.intervals[j]:]
+            slack = REDERIVE_SLACK * ga.track.span  # a restart at a crossing event lies within the solver's error
+            if (len(below) and s < below[-1] - slack) or (len(above) and s > above[0] + slack):
+                self.intervals[j] = ga.track.interval(s)
+
+    def _turn_event(self) -> list:
+        """Turning points of the dynamic body (v = 0) end a segment: between them s is monotone, so each
+        crossing switch s − s_k can change sign only once."""
+        k, scale = self.body_offset + 1, max(abs(self.body.motion.initial_velocity), 1e-3)
+        return [_labelled(lambda t, y: y[k] / scale, f"{self.body.name}:turn")]
+
     def events(self):
         out = super().events()
+        if self.body is not None and not self.held:
+            out += self._turn_event()
         for j, ga in enumerate(self.areas):
             if ga is None or ga.by_time:
                 continue
@@ -207,9 +236,10 @@ class SceneNetwork(Network):
             scale = max(ga.track.total_area ** 0.5, 1e-6)
             k = self.body_offset
             if i > 0:
-                out.append(_labelled(lambda t, y, c=crossings[i - 1]: (y[k] - c) / scale, f"{name}:contact-{i}-down"))
+                out.append(_directed(lambda t, y, c=crossings[i - 1]: (y[k] - c) / scale, f"{name}:contact-{i}-down",
+                                     -1.0))
             if i < len(crossings):
-                out.append(_labelled(lambda t, y, c=crossings[i]: (y[k] - c) / scale, f"{name}:contact-{i}-up"))
+                out.append(_directed(lambda t, y, c=crossings[i]: (y[k] - c) / scale, f"{name}:contact-{i}-up", 1.0))
         if self.contact is not None:
             out += self._contact_events()
         return out
@@ -218,6 +248,8 @@ class SceneNetwork(Network):
         name, _, kind = label.rpartition(":")
         if kind == "seat":
             return self._seat_event(t, y)
+        if kind == "turn":
+            return y
         if kind.startswith("kink-"):
             self._log_touch(t, y)
             return y
@@ -277,6 +309,13 @@ class SceneNetwork(Network):
         """Energy the dynamic body has given up since t = 0: ½m(v0² − v²) + m·g·s [J]."""
         m, k = self.body.motion, self.body_offset
         return 0.5 * m.mass * (m.initial_velocity ** 2 - y[k + 1] ** 2) + m.mass * m.gravity * y[k]
+
+
+def _directed(g, label, direction):
+    """A switch function that can only cross one way (s leaves its interval through that end)."""
+    g = _labelled(g, label)
+    g.direction = direction
+    return g
 
 
 def first_contact(track):

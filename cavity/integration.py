@@ -234,13 +234,16 @@ def _directions(system, events, t, y, last, near) -> list:
 
     Switch functions are dimensionless and of order one. The function that has just fired is watched for the
     opposite crossing, so a root located a rounding error before the true crossing cannot fire again at the
-    restart. A function within ``near`` of zero (a twin of the one that fired, a tank exactly at ambient) is
+    restart. A function with a ``direction`` attribute is watched that way. A function within ``near`` of zero (a twin of the one that fired, a tank exactly at ambient) is
     watched against its trend along the flow: if it is moving up it can only fire coming back down; if it does
     not move it is not watched in this segment (its kink is the segment's start).
     """
     dirs, slope_probe = [], None
     for g in events:
         label = getattr(g, "label", None)
+        if getattr(g, "direction", None) is not None:  # the system knows which way it can cross
+            dirs.append(g.direction)
+            continue
         if last is not None and label is not None and label == last[0] and t == last[1]:
             dirs.append(-last[2])
             continue
