@@ -199,16 +199,19 @@ def signed_distances(blocker, points, cutoff=np.inf, open_depth=0.0) -> np.ndarr
         return out
     sides = sides_of(blocker)
     found = blocker.distances(points, cutoff=cutoff)
-    near = np.isfinite(found.distances)
+    near = np.flatnonzero(np.isfinite(found.distances))
     out[near] = found.distances[near]
     depth = np.inf if sides.closed else float(open_depth)
     if not depth > 0.0:
         return out
+    if near.size:  # the closest point is known: the side test needs nothing more
+        behind = sides.behind(points[near], found.closest_points[near], found.faces[near])
+        out[near[behind & (found.distances[near] <= depth)]] *= -1.0
     lo, hi = blocker.vertices.min(axis=0), blocker.vertices.max(axis=0)
     pad = 1e-9 * float(np.max(hi - lo)) + (0.0 if sides.closed else depth)
-    box = np.flatnonzero(np.all((points >= lo - pad) & (points <= hi + pad), axis=1))
-    if box.size:
-        full = blocker.distances(points[box], cutoff=depth)
-        behind = sides.behind(points[box], full.closest_points, full.faces)
-        out[box[behind]] = -full.distances[behind]
+    far = np.flatnonzero(~np.isfinite(found.distances) & np.all((points >= lo - pad) & (points <= hi + pad), axis=1))
+    if far.size and depth > cutoff:  # beyond the cutoff but inside the box: search without it
+        full = blocker.distances(points[far], cutoff=depth)
+        behind = sides.behind(points[far], full.closest_points, full.faces)
+        out[far[behind]] = -full.distances[behind]
     return out

@@ -90,7 +90,8 @@ class AreaTrack:
             obstruction = np.concatenate([obstruction[:1], obstruction[1:][last]])
             actives = np.concatenate([actives[:1], actives[1:][last]])
             applied = np.concatenate([[0], np.flatnonzero(last) + 1])
-        return cls(theta, np.maximum(obstruction, 0.0), actives, float(total), span=hi - lo, source=crossings, applied=applied,
+        obstruction = np.where(actives == 0, 0.0, np.where(actives == len(weights), float(total), obstruction))
+        return cls(theta, np.clip(obstruction, 0.0, float(total)), actives, float(total), span=hi - lo, source=crossings, applied=applied,
                    **options)
 
     @property
@@ -98,6 +99,41 @@ class AreaTrack:
         """(intervals,) leakage area of each interval at the reference face areas [m^2]."""
         return np.array([leak_area(self.total_area, float(o), self.effective_area, self.permeability)
                          for o in self.obstruction])
+
+    def grouped(self, window: float) -> "AreaTrack":
+        """The same track with each cluster of crossings spanning at most ``window`` replaced by one switch.
+
+        Over a cluster [a, b] the obstruction goes from O₀ to O₁ through several steps. One step at
+        t* = (I + O₀·a − O₁·b)/(O₀ − O₁), where I is the exact ∫_a^b O dt, keeps the blocked area·time exact (and
+        every value is one the surface takes); the flow it changes is second order, ≈ |O₁ − O₀|·window²·|dφ/dt|/12
+        for a flow law φ per unit area. Clusters whose net change is zero, or whose t* falls outside [a, b], are
+        kept as they are."""
+        theta, obs, act = self.crossings, self.obstruction, self.actives
+        keep_t, keep_o, keep_a = [], [obs[0]], [act[0]]
+        i, n = 0, len(theta)
+        while i < n:
+            j = i
+            while j + 1 < n and theta[j + 1] - theta[i] <= window:
+                j += 1
+            a, b, o0, o1 = theta[i], theta[j], obs[i], obs[j + 1]
+            area_time = float(np.dot(obs[i + 1:j + 1], np.diff(theta[i:j + 1]))) if j > i else 0.0
+            t_star = (area_time + o0 * a - o1 * b) / (o0 - o1) if j > i and o0 != o1 else np.nan
+            if j > i and a <= t_star <= b:
+                keep_t.append(t_star)
+                keep_o.append(o1)
+                keep_a.append(act[j + 1])
+            else:
+                j = i
+                keep_t.append(theta[i])
+                keep_o.append(obs[i + 1])
+                keep_a.append(act[i + 1])
+            i = j + 1
+        return AreaTrack(np.array(keep_t), np.array(keep_o), np.array(keep_a), self.total_area, self.effective_area,
+                         self.permeability, self.scale, None, self.span, self.source, None)
+
+    def active_at(self, theta: float) -> np.ndarray:
+        """(n,) bool: the active nodes at θ (right limit at a crossing), from the crossings found."""
+        return self.source.active_at(theta)
 
     def interval(self, theta: float) -> int:
         return bisect.bisect_right(self.crossings, theta)

@@ -9,7 +9,7 @@ import blockage
 from .area_track import AreaTrack, node_weights
 from .crossings import RESOLUTION, certified_crossings
 from .errors import SceneError
-from .gaps import DeformingPlacement, GapField, NodePath, RigidPlacement
+from .gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
 from .scene_network import GeometricArea
 
 __all__ = ["build_leak_area", "placement_of", "leak_surface", "blockage_rule"]
@@ -17,6 +17,9 @@ __all__ = ["build_leak_area", "placement_of", "leak_surface", "blockage_rule"]
 #: Gaps are exact up to this many contact tolerances (at least CUTOFF_EXTENT of the surface's size) [-].
 CUTOFF_TOLERANCES = 8.0
 CUTOFF_EXTENT = 0.02
+#: Crossings of a prescribed motion closer than GROUP_WINDOW·√rtol of the run share one switch
+#: (:meth:`cases.area_track.AreaTrack.grouped`: blocked area·time kept exact, flow changed to second order).
+GROUP_WINDOW = 0.0
 
 
 def leak_surface(scene, j, cavity_meshes):
@@ -52,9 +55,12 @@ def placement_of(driver, name, open_depth=0.0):
                           rotation_axis=m.rotation_axis, centre=m.rotation_centre, open_depth=open_depth)
 
 
-def _node_path(scene, surface, cavity, lo, hi):
-    """How the leakage nodes move: with the cavity mesh's scale table when cut from a scaled cavity."""
+def _node_path(scene, surface, cavity, series):
+    """How the leakage nodes move: with the cavity mesh's scale table or its mesh series when cut from it."""
     x0 = np.asarray(surface.vertices, dtype=float)
+    if cavity is not None and cavity.name in series:
+        times, vertices = series[cavity.name]
+        return NodePath(x0, trajectory=(times, vertices[:, surface.source_vertices]))
     if cavity is not None and cavity.mesh_scale_table:
         from .tables_io import read_table
 
@@ -65,47 +71,101 @@ def _node_path(scene, surface, cavity, lo, hi):
     return NodePath(x0)
 
 
+def read_nodes(scene, j):
+    """(x (n, 3) [m], area (n,) [m^2] or None) of a node-based leakage surface (CSV: x, y, z[, area])."""
+    e, key = scene.exchange[j], f"exchange[{j}].leakage_nodes"
+    try:
+        rows = np.genfromtxt(scene.base / e.leakage_nodes, delimiter=",", comments="#", dtype=float)
+    except (OSError, ValueError) as exc:
+        raise SceneError(scene.path, key, f"cannot read {e.leakage_nodes!r}: {exc}") from None
+    rows = np.atleast_2d(rows)
+    if rows.shape[0] and not np.all(np.isfinite(rows[0])):
+        rows = rows[1:]  # a header row
+    if rows.ndim != 2 or rows.shape[1] not in (3, 4) or not len(rows) or not np.all(np.isfinite(rows)):
+        raise SceneError(scene.path, key, f"{e.leakage_nodes!r}: expected rows of x, y, z [m] and optionally "
+                                          "area [m^2], all finite numbers")
+    if rows.shape[1] == 4 and not np.all(rows[:, 3] >= 0):
+        raise SceneError(scene.path, key, f"{e.leakage_nodes!r}: node areas must be >= 0 [m^2]")
+    return rows[:, :3].copy(), (rows[:, 3].copy() if rows.shape[1] == 4 else None)
+
+
 def _knots(driver, path, lo, hi):
     pts = set(driver.breakpoints) if driver.dynamic is None else set()
     if path.scale is not None:
         pts |= set(path.scale.breakpoints)
+    if path.trajectory is not None:
+        pts |= {float(t) for t in path.trajectory[0]}
     return np.array([lo] + sorted(p for p in pts if lo < p < hi) + [hi])
 
 
-def build_leak_area(scene, j, cavity_meshes: dict, driver):
-    """(GeometricArea, (surface, positions)) of exchange j, or (None, None) when it has a plain area."""
+def _weights_at(surface, path):
+    """θ -> (node weights, total area) of a surface whose nodes move on a trajectory (face areas at θ)."""
+    idx = np.arange(len(surface.vertices))
+
+    def at(theta):
+        moved = surface.with_vertices(path.positions(np.full(len(idx), float(theta)), idx))
+        return node_weights(moved.face_areas, moved.faces, moved.face_sizes, len(idx)), moved.total_area
+    return at
+
+
+def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
+    """(GeometricArea, (surface or None, positions)) of exchange j, or (None, None) when it has a plain area.
+
+    ``series``: {cavity name: (times, vertices)} of cavities given as mesh series."""
     e = scene.exchange[j]
-    if not (e.leakage_surface or e.leakage_box):
+    if not (e.leakage_surface or e.leakage_box or e.leakage_nodes):
         return None, None
-    surface, cavity = leak_surface(scene, j, cavity_meshes)
     tol = e.contact_tolerance or 1e-300
-    path = _node_path(scene, surface, cavity, driver.lo, driver.hi)
-    depth = float(getattr(e, "penetration_depth", 0.0) or 0.0)
-    field = GapField(path, [placement_of(driver, n, depth) for n in e.blocked_by], tol,
-                     max(CUTOFF_TOLERANCES * tol, CUTOFF_EXTENT * float(np.linalg.norm(np.ptp(surface.vertices, 0)))))
+    options = {"effective_area": e.effective_area or None, "permeability": e.permeability}
+    if e.leakage_nodes:
+        surface, (x0, node_area) = None, read_nodes(scene, j)
+        path = NodePath(x0)
+        weights = node_area if node_area is not None else np.ones(len(x0))
+        total = float(weights.sum())
+    else:
+        surface, cavity = leak_surface(scene, j, cavity_meshes)
+        path = _node_path(scene, surface, cavity, series or {})
+        weights = node_weights(surface.face_areas, surface.faces, surface.face_sizes, len(surface.vertices))
+        total = surface.total_area
+        options.update(scale=path.scale, weights_at=_weights_at(surface, path) if path.trajectory else None)
+    depth = float(e.penetration_depth or 0.0)
+    placements = [placement_of(driver, n, depth) for n in e.blocked_by]
+    if e.self_contact:
+        placements.append(SelfPlacement(blockage.Blocker(cavity_meshes[e.from_]), surface.source_vertices,
+                                        path.scale))
+    size = float(np.linalg.norm(np.ptp(path.x0, axis=0)))
+    field = GapField(path, placements, tol, max(CUTOFF_TOLERANCES * tol, CUTOFF_EXTENT * size),
+                     surface.edges if e.edge_contact else None)
     knots = _knots(driver, path, driver.lo, driver.hi)
-    found = certified_crossings(field.excess, len(surface.vertices), knots, field.speed(knots))
-    weights = node_weights(surface.face_areas, surface.faces, surface.face_sizes, len(surface.vertices))
-    track = AreaTrack.build(weights, surface.total_area, found, driver.lo, driver.hi,
-                            effective_area=e.effective_area or None, permeability=e.permeability, scale=path.scale)
+    found = certified_crossings(field.excess, len(path.x0), knots, field.speed(knots))
+    track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
+    if driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
+        track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
 
     def positions(theta, nodes=None):
-        idx = np.arange(len(surface.vertices)) if nodes is None else np.asarray(nodes)
+        idx = np.arange(len(path.x0)) if nodes is None else np.asarray(nodes)
         return path.positions(np.full(len(idx), float(theta)), idx)
 
     return GeometricArea(track, driver.dynamic is None), (surface, positions)
 
 
 def blockage_rule(scene, j) -> dict:
-    """What the blockage of exchange j models, for summary.json."""
+    """What the blockage of exchange j models, for summary.json ("blockage")."""
     e = scene.exchange[j]
-    return {"rule": "a leakage node is active when its signed distance to a blocking surface is <= the contact "
-                    "tolerance; nodes inside a closed blocker are active at any depth"
-                    + (f", and nodes behind an open blocker up to {e.penetration_depth} m"
-                       if getattr(e, "penetration_depth", 0.0) else "")
-                    + "; each face loses A_e*N_c/N_e",
-            "tolerance [m]": e.contact_tolerance,
+    surface = "node-based (active nodes / all, or their share of the area)" if e.leakage_nodes else \
+        "element-based: each face loses A_e*N_c/N_e"
+    rule = ("a leakage node is active when its distance to a blocking surface is <= the contact tolerance, or "
+            "when it lies inside a closed blocker (any depth)")
+    if e.penetration_depth:
+        rule += f", or behind an open blocker's interior within {e.penetration_depth} m"
+    if e.edge_contact:
+        rule += "; both nodes of a leakage edge within the tolerance of a blocker's feature edge are active"
+    if e.self_contact:
+        rule += "; the cavity's own surface blocks too (faces sharing the node ignored)"
+    return {"rule": rule, "surface": surface, "tolerance [m]": e.contact_tolerance,
             "side test": "angle-weighted pseudonormal at the closest point (Baerentzen & Aanaes 2005)",
-            "guarantee": f"every contact and release lasting at least {RESOLUTION:g} of the run (or of the "
-                         "body's travel) is found and timed to machine precision (Lipschitz bound on the gap, "
-                         "bisection, regula falsi)"}
+            "guarantee": f"every contact and release lasting at least {RESOLUTION:g} of the searched range (the "
+                         "run, or the body's travel) is found and timed to machine precision: Lipschitz bound on "
+                         "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi",
+            "area switches shared": f"crossings within {GROUP_WINDOW:g}*sqrt(rtol) of the run share one switch"
+                                    if GROUP_WINDOW > 0 else "none: every crossing is a switch"}

@@ -21,7 +21,8 @@ import numpy as np
 
 from blockage.sides import signed_distances
 
-__all__ = ["table_values", "table_slopes", "NodePath", "RigidPlacement", "DeformingPlacement", "GapField"]
+__all__ = ["table_values", "table_slopes", "NodePath", "RigidPlacement", "DeformingPlacement", "SelfPlacement",
+           "GapField"]
 
 
 def table_values(table, x) -> np.ndarray:
@@ -129,8 +130,12 @@ class RigidPlacement:
         R = _rotations(self.rotation_axis, np.radians(table_values(self.angle, thetas)))
         return np.einsum("kji,kj->ki", R, x - c) + c
 
-    def signed(self, thetas, points, cutoff) -> np.ndarray:
+    def signed(self, thetas, points, cutoff, nodes=None) -> np.ndarray:
         return signed_distances(self.blocker, self.to_local(thetas, points), cutoff, self.open_depth)
+
+    def edge_gaps(self, thetas, starts, ends, cutoff) -> np.ndarray:
+        """(k,) distance of each segment (at θ) to the blocker's feature edges [m], ``inf`` beyond the cutoff."""
+        return self.blocker.edge_distances(self.to_local(thetas, starts), self.to_local(thetas, ends), cutoff)
 
     def speeds(self, a, b, path: NodePath, nodes) -> np.ndarray:
         ds = table_slopes(self.displacement, a, b) if self.displacement is not None else abs(self.velocity)
@@ -158,14 +163,22 @@ class DeformingPlacement:
         w = min(max((theta - times[i]) / (times[i + 1] - times[i]), 0.0), 1.0)
         return (1.0 - w) * verts[i] + w * verts[i + 1]
 
-    def signed(self, thetas, points, cutoff) -> np.ndarray:
-        out = np.empty(len(points))
+    def _per_theta(self, thetas, query) -> np.ndarray:
+        """``query(rows)`` with the blocker refitted to its vertices at each distinct θ."""
+        out = np.empty(len(thetas))
         unique, which = np.unique(thetas, return_inverse=True)
         for k, theta in enumerate(unique):
             sel = np.flatnonzero(which.ravel() == k)
             self.blocker.refit(self.vertices(theta))
-            out[sel] = signed_distances(self.blocker, points[sel], cutoff, self.open_depth)
+            out[sel] = query(sel)
         return out
+
+    def signed(self, thetas, points, cutoff, nodes=None) -> np.ndarray:
+        return self._per_theta(thetas, lambda sel: signed_distances(self.blocker, points[sel], cutoff,
+                                                                    self.open_depth))
+
+    def edge_gaps(self, thetas, starts, ends, cutoff) -> np.ndarray:
+        return self._per_theta(thetas, lambda sel: self.blocker.edge_distances(starts[sel], ends[sel], cutoff))
 
     def speeds(self, a, b, path: NodePath, nodes) -> np.ndarray:
         times, verts = self.trajectory
@@ -179,27 +192,90 @@ class DeformingPlacement:
 
 
 @dataclass
+class SelfPlacement:
+    """The cavity's own surface as a blocker of a leakage surface cut from it: ``blocker`` built on the cavity
+    mesh, ``ids`` (n,) the mesh vertex of each leakage node (faces holding it are ignored), scaled with the
+    mesh by ``scale`` (a Table or None) about the origin."""
+
+    blocker: object
+    ids: np.ndarray
+    scale: object = None
+
+    def _s(self, thetas):
+        return table_values(self.scale, thetas) if self.scale is not None else np.ones(len(thetas))
+
+    def signed(self, thetas, points, cutoff, nodes=None) -> np.ndarray:
+        s = self._s(thetas)
+        d = np.empty(len(points))
+        for value in np.unique(s):  # one query per scale (mostly one)
+            sel = np.flatnonzero(s == value)
+            found = self.blocker.distances(points[sel] / value, cutoff / value, None, self.ids[nodes[sel]])
+            d[sel] = np.minimum(found.distances * value, cutoff)
+        return d
+
+    def edge_gaps(self, thetas, starts, ends, cutoff) -> np.ndarray:
+        return np.full(len(starts), np.inf)  # edges of the own surface touch it everywhere: not a contact
+
+    def speeds(self, a, b, path: NodePath, nodes) -> np.ndarray:
+        if self.scale is None:
+            return np.zeros(len(nodes))
+        size = float(np.max(np.linalg.norm(self.blocker.vertices, axis=1)))
+        return 2.0 * table_slopes(self.scale, a, b) * size + np.zeros(len(nodes))
+
+
+@dataclass
 class GapField:
     """f_i(θ) = min over blockers of the signed gap − tolerance, for :func:`cases.crossings.certified_crossings`.
 
-    ``cutoff`` [m]: gaps are exact up to it and capped there (a capped gap is still 1-Lipschitz)."""
+    ``cutoff`` [m]: gaps are exact up to it and capped there (a capped gap is still 1-Lipschitz). With ``edges``
+    ((e, 2) node pairs) a node's gap is also the distance of each of its edges to the blockers' feature edges
+    (edge-to-edge contact)."""
 
     path: NodePath
     placements: list
     tolerance: float
     cutoff: float
+    edges: np.ndarray | None = None
 
     def excess(self, thetas, nodes) -> np.ndarray:
         thetas, nodes = np.asarray(thetas, dtype=float), np.asarray(nodes, dtype=np.int64)
         x = self.path.positions(thetas, nodes)
         g = np.full(len(nodes), self.cutoff)
         for placement in self.placements:
-            g = np.minimum(g, placement.signed(thetas, x, self.cutoff))
+            g = np.minimum(g, placement.signed(thetas, x, self.cutoff, nodes))
+        if self.edges is not None and len(self.edges):
+            g = np.minimum(g, self._edge_gaps(thetas, nodes))
         return g - self.tolerance
+
+    def _edge_gaps(self, thetas, nodes) -> np.ndarray:
+        """(k,) smallest distance of the edges at each (θ, node) pair to the blockers' feature edges [m]."""
+        if not hasattr(self, "_incident"):
+            e = np.asarray(self.edges)
+            ends = np.concatenate([e, e[:, ::-1]])
+            order = np.argsort(ends[:, 0], kind="stable")
+            self._incident = (np.searchsorted(ends[order, 0], np.arange(len(self.path.x0) + 1)), ends[order, 1])
+        start, other = self._incident
+        count = start[nodes + 1] - start[nodes]
+        pair = np.repeat(np.arange(len(nodes)), count)
+        if not pair.size:
+            return np.full(len(nodes), self.cutoff)
+        offsets = np.arange(pair.size) - np.repeat(np.cumsum(count) - count, count)
+        far = other[start[nodes[pair]] + offsets]
+        th = thetas[pair]
+        a, b = self.path.positions(th, nodes[pair]), self.path.positions(th, far)
+        d = np.full(pair.size, self.cutoff)
+        for placement in self.placements:
+            d = np.minimum(d, placement.edge_gaps(th, a, b, self.cutoff))
+        out = np.full(len(nodes), self.cutoff)
+        np.minimum.at(out, pair, d)
+        return out
 
     def speed(self, knots):
         def bound(j, nodes):
             a, b = knots[j], knots[j + 1]
-            return np.max([p.speeds(a, b, self.path, nodes) for p in self.placements], axis=0) \
+            out = np.max([p.speeds(a, b, self.path, nodes) for p in self.placements], axis=0) \
                 if self.placements else np.zeros(len(nodes))
+            if self.edges is not None and len(self.edges):  # an edge's far end may move faster than the node
+                out = out + float(np.max(self.path.speeds(a, b, np.arange(len(self.path.x0))), initial=0.0))
+            return out
         return bound

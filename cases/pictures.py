@@ -27,9 +27,10 @@ def frame_at(results, j: int, t: float):
     leak = surface.with_vertices(positions(th, None))
     placed = geo["driver"].placed(spec.blocked_by)(th)
     tol = spec.contact_tolerance
-    res = blockage.evaluate(leak, placed, tol, cutoff=4 * tol, permeability=spec.permeability)
-    areas = np.asarray(surface.face_areas)
-    fraction = np.divide(res.face_blocked_area, areas, out=np.zeros_like(areas), where=areas > 0)
+    res = blockage.evaluate(leak, placed, tol, cutoff=4 * tol, permeability=spec.permeability)  # distances
+    active = net.areas[j].track.active_at(th)  # the active set the solver used (cases.area_track)
+    counts = blockage.areas.active_counts(active, leak.faces, leak.face_sizes)
+    fraction = counts / np.asarray(leak.face_sizes, dtype=float)
     bodies = tuple((geo["bodies"][n][0].vertices_at(th), geo["bodies"][n][0].mesh.faces) for n in spec.blocked_by)
     net.restore(results.trajectory.mode_at(t))
     y = results.trajectory(t)
@@ -40,7 +41,7 @@ def frame_at(results, j: int, t: float):
         from .contact_results import nodal_state
 
         cpress, status, _ = nodal_state(net, t, y)
-    return Frame(t, p, leak.vertices, leak.faces, np.clip(fraction, 0.0, 1.0), res.active_nodes,
+    return Frame(t, p, leak.vertices, leak.faces, np.clip(fraction, 0.0, 1.0), active,
                  res.distances, bodies, cpress=cpress, contact_status=status)
 
 
@@ -52,7 +53,7 @@ def blocked_exchanges(results) -> list:
     geo = results.model.geometry
     if geo is None:
         return []
-    return [j for j, ga in enumerate(geo["areas"]) if ga is not None]
+    return [j for j, ga in enumerate(geo["areas"]) if ga is not None and geo["surfaces"][j][0] is not None]
 
 
 def default_times(results, j: int) -> list:

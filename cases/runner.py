@@ -11,6 +11,7 @@ from cavity.integration import Trajectory, integrate
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 
 from .build import Model, build_model
+from .build_leak import blockage_rule
 from .contact_results import contact_columns, contact_row, contact_summary, nodal_history
 from .scene import Scene, load_scene
 
@@ -218,7 +219,10 @@ def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dic
         blocked = np.flatnonzero(np.asarray(actives) > 0)
         out[name] = {"first blockage time [s]": float(times[blocked[0]]) if blocked.size else None,
                      "minimum leakage area [m^2]": float(areas[k]), "minimum leakage area time [s]": float(times[k]),
-                     "total leakage surface area [m^2]": track.total_area, "area switches": len(times) - 1}
+                     "total leakage surface area [m^2]": track.total_area, "area switches": len(times) - 1,
+                     "crossings found": int(len(track.source.theta)) if track.source is not None else 0,
+                     "gap evaluations": int(track.source.evaluations) if track.source is not None else 0,
+                     **blockage_rule(model.scene, j)}
     return out
 
 

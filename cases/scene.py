@@ -96,7 +96,11 @@ class CavitySpec:
                         check="nonnegative")
     volume_table: str = key("CSV table (time [s], volume [m^3])", default="")
     mesh: str = key("closed triangle mesh file (any format trimesh reads), coordinates in metres", default="")
-    mesh_scale_table: str = key("CSV table (time [s], uniform scale factor [-]) applied to `mesh`", default="")
+    mesh_scale_table: str = key("CSV table (time [s], uniform scale factor [-]) applied to `mesh` (about the "
+                                "origin; a leakage_box vent scales with it)", default="")
+    mesh_series: str = key("the cavity surface as a series of closed meshes (.pvd, .xdmf or .npz), linear in "
+                           "time between frames: exact volume; a leakage_box vent moves and stretches with it",
+                           default="")
     added_volume: float = key("volume added to the geometric volume", "m^3", default=0.0, check="nonnegative")
     minimum_volume: float = key("volume used in the equation of state when V falls below it", "m^3",
                                 default=0.0, check="nonnegative")
@@ -164,6 +168,15 @@ class ExchangeSpec:
                                 default=0.0, check="nonnegative")
     permeability: float = key("fraction of the blocked area that still leaks (Radioss Bvent)", default=0.0,
                               check="fraction")
+    leakage_nodes: str = key("or: a node-based leakage surface, CSV of x, y, z [m] and optionally area [m^2] per "
+                             "node; blocked fraction = active nodes / all (or their share of the area)", default="")
+    edge_contact: bool = key("also block both nodes of a leakage edge within the tolerance of a blocker's "
+                             "feature edge (edge-to-edge contact)", default=False)
+    self_contact: bool = key("the `from` cavity's own surface also blocks its leakage_box surface (faces "
+                             "sharing the node are ignored)", default=False)
+    penetration_depth: float = key("nodes behind an open blocking sheet count as in contact up to this depth "
+                                   "(0: the distance rule only; inside a closed blocker: any depth)", "m",
+                                   default=0.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -182,6 +195,8 @@ class BodySpec:
     rotation_centre: tuple = key("a point on the rotation axis", "m", default=(0.0, 0.0, 0.0))
     vertex_trajectory: str = key("prescribed .npz with 'times' (k,) [s] and 'vertices' (k, n, 3) [m] for the "
                                  "mesh's n vertices (e.g. from a finite-element run)", default="")
+    mesh_series: str = key("prescribed series of the body's mesh (.pvd with .vtu/.vtp frames, .xdmf, or .npz "
+                           "with 'times', 'vertices', 'faces'), linear in time between frames", default="")
     mass: float = key("dynamic body: mass (0: prescribed motion)", "kg", default=0.0, check="nonnegative")
     initial_velocity: float = key("dynamic body: initial speed along `axis`", "m/s", default=0.0, check="finite")
     gravity: float = key("dynamic body: acceleration along `axis`", "m/s^2", default=0.0, check="finite")

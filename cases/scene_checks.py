@@ -18,12 +18,15 @@ def check_cross_references(scene: Scene, path) -> None:
         raise SceneError(path, "cavity", "a scene needs at least one [[cavity]]")
     for i, c in enumerate(scene.cavity):
         where = f"cavity[{i}]"
-        given = [k for k in ("volume", "volume_table", "mesh") if getattr(c, k)]
+        given = [k for k in ("volume", "volume_table", "mesh", "mesh_series") if getattr(c, k)]
         if len(given) != 1:
-            raise SceneError(path, where, f"give exactly one of volume, volume_table, mesh (got {given or 'none'})")
+            raise SceneError(path, where, "give exactly one of volume, volume_table, mesh, mesh_series "
+                                          f"(got {given or 'none'})")
         if c.mesh_scale_table and not c.mesh:
             raise SceneError(path, f"{where}.mesh_scale_table", "needs `mesh`")
-        for f in ("volume_table", "mesh", "mesh_scale_table"):
+        if c.mesh_series and c.wrapped_by:
+            raise SceneError(path, f"{where}.wrapped_by", "a mesh series already gives every node's position")
+        for f in ("volume_table", "mesh", "mesh_scale_table", "mesh_series"):
             if getattr(c, f) and not (scene.base / getattr(c, f)).is_file():
                 raise SceneError(path, f"{where}.{f}", f"file {getattr(c, f)!r} does not exist")
         if c.volume_table:
@@ -60,11 +63,16 @@ LAW_KEYS = {"mass_rate_leakage": ("leakage_table",), "volume_rate_leakage": ("le
 def _check_bodies(scene: Scene, path) -> None:
     names = [b.name for b in scene.body]
     for i, b in enumerate(scene.body):
-        shapes = [k for k in ("mesh", "sphere", "box") if getattr(b, k)]
+        shapes = [k for k in ("mesh", "sphere", "box", "mesh_series") if getattr(b, k)]
         if len(shapes) != 1:
-            raise SceneError(path, f"body[{i}]", f"give exactly one of mesh, sphere, box (got {shapes or 'none'})")
-        if b.mesh and not (scene.base / b.mesh).is_file():
-            raise SceneError(path, f"body[{i}].mesh", f"file {b.mesh!r} does not exist")
+            raise SceneError(path, f"body[{i}]", "give exactly one of mesh, sphere, box, mesh_series "
+                                                 f"(got {shapes or 'none'})")
+        for k in ("mesh", "mesh_series"):
+            if getattr(b, k) and not (scene.base / getattr(b, k)).is_file():
+                raise SceneError(path, f"body[{i}].{k}", f"file {getattr(b, k)!r} does not exist")
+        if b.mesh_series and (b.mass or b.velocity or b.displacement_table or b.rotation_table or
+                              b.vertex_trajectory):
+            raise SceneError(path, f"body[{i}].mesh_series", "a mesh series is the body's whole motion")
         if b.displacement_table:
             read_table(scene.base / b.displacement_table, path, f"body[{i}].displacement_table", "displacement [m]")
         if b.mass and (b.velocity or b.displacement_table or b.rotation_table or b.vertex_trajectory):
@@ -105,13 +113,22 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
         raise SceneError(path, f"{where}.leakage_table", f"file {e.leakage_table!r} does not exist")
     if e.law in ("mass_flux", "volume_flux") and e.flux == 0.0:
         raise SceneError(path, f"{where}.flux", f"required (non-zero) for law {e.law!r}")
-    geometric = bool(e.leakage_surface or e.leakage_box)
-    if e.leakage_surface and e.leakage_box:
-        raise SceneError(path, f"{where}.leakage_box", "give leakage_surface or leakage_box, not both")
-    if e.leakage_surface and not (scene.base / e.leakage_surface).is_file():
-        raise SceneError(path, f"{where}.leakage_surface", f"file {e.leakage_surface!r} does not exist")
-    if e.leakage_box and not next(c for c in scene.cavity if c.name == e.from_).mesh:
+    sources = [k for k in ("leakage_surface", "leakage_box", "leakage_nodes") if getattr(e, k)]
+    geometric = bool(sources)
+    if len(sources) > 1:
+        raise SceneError(path, f"{where}.{sources[1]}", "give one of leakage_surface, leakage_box, leakage_nodes")
+    for k in ("leakage_surface", "leakage_nodes"):
+        if getattr(e, k) and not (scene.base / getattr(e, k)).is_file():
+            raise SceneError(path, f"{where}.{k}", f"file {getattr(e, k)!r} does not exist")
+    cavity = next((c for c in scene.cavity if c.name == e.from_), None)
+    if e.leakage_box and cavity is not None and not (cavity.mesh or cavity.mesh_series):
         raise SceneError(path, f"{where}.leakage_box", "selects faces of the `from` cavity's mesh: it has none")
+    if e.self_contact and not e.leakage_box:
+        raise SceneError(path, f"{where}.self_contact", "needs leakage_box (a part of the cavity's own surface)")
+    if (e.self_contact or e.edge_contact) and not e.contact_tolerance > 0:
+        raise SceneError(path, f"{where}.contact_tolerance", "expected a tolerance > 0 [m]")
+    if e.edge_contact and e.leakage_nodes:
+        raise SceneError(path, f"{where}.edge_contact", "a node-based leakage surface has no edges")
     if e.blocked_by and not geometric:
         raise SceneError(path, f"{where}.blocked_by", "needs leakage_surface or leakage_box")
     if geometric and e.blocked_by and not e.contact_tolerance > 0:

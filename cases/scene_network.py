@@ -291,6 +291,33 @@ class SceneNetwork(Network):
             approach = float(-c.sigma[i] * y[k + 1])
             self.contact_log.append((t, "touch" if approach > 0 else "separate", approach, self._pressure(t, y)))
 
+    def lowered_geometry(self):
+        """The geometry as arrays for the compiled path (:func:`exchange.compiled.lower`): per blocked exchange its
+        area steps (crossing times, area after each) and scale table, per wrapped cavity its volume spline of
+        time; or why it cannot be lowered (a dynamic body, a moving surface, a pop vent on a blocked area)."""
+        if self.body is not None or self.contact is not None:
+            return "a dynamic body"
+        areas, volumes = {}, {}
+        for j, ga in enumerate(self.areas):
+            if ga is None:
+                continue
+            track, act = ga.track, self.exchanges[j].activation
+            if track.weights_at is not None:
+                return f"exchange {self.exchanges[j].name}: a leakage surface on a vertex trajectory"
+            if act is not None and act.pop_pressure is not None:
+                return f"exchange {self.exchanges[j].name}: a pop vent on a blocked leakage area"
+            scale = track.scale if track.effective_area is None else None
+            areas[j] = (np.asarray(track.crossings, dtype=float), track.areas, scale)
+        for cav in self.cavities:
+            vol = cav.volume
+            if hasattr(vol, "spline"):
+                volumes[cav.name] = (vol.spline.x, vol.spline.c)
+        return {"areas": areas, "volumes": volumes}
+
+    def wrap_mode(self, mode):
+        """A plain network's snapshot (from the compiled path) as this network's."""
+        return mode, tuple(self.intervals), False
+
     def snapshot(self):
         return super().snapshot(), tuple(self.intervals), self.held
 

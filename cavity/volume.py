@@ -13,7 +13,7 @@ import numpy as np
 from .tables import Table
 
 __all__ = ["mesh_volume", "closed_mesh_volume", "MeshError", "FixedVolume", "TableVolume", "ScaledMeshVolume",
-           "effective_volume"]
+           "effective_volume", "SeriesVolume", "series_volume_coefficients"]
 
 
 class MeshError(ValueError):
@@ -130,3 +130,69 @@ class ScaledMeshVolume:
     @property
     def breakpoints(self) -> tuple:
         return self.scale.breakpoints
+
+
+def series_volume_coefficients(times, vertices, faces) -> np.ndarray:
+    r"""Exact volume of a closed mesh whose vertices move linearly between frames, as cubics in time.
+
+    With :math:`\mathbf x(t) = \mathbf x_i + w(\mathbf x_{i+1} - \mathbf x_i)`, :math:`w = (t - t_i)/(t_{i+1} - t_i)`,
+    each term :math:`\mathbf x_0\cdot(\mathbf x_1\times\mathbf x_2)/6` of :func:`mesh_volume` is a cubic in w, so
+    V(t) is a cubic on every frame interval: its four coefficients come from V at w = 0, 1/3, 2/3, 1 (Lagrange,
+    exact up to round-off).
+
+    Parameters
+    ----------
+    times : (k,) float
+        Frame times [s], increasing.
+    vertices : (k, n, 3) float
+        [m]
+    faces : (m, 3) int
+
+    Returns
+    -------
+    (4, k − 1) float
+        Coefficients of (t − t_i)³, ², ¹, ⁰ per interval, as :class:`scipy.interpolate.PPoly` takes them.
+
+    >>> import trimesh
+    >>> box = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    >>> c = series_volume_coefficients([0.0, 2.0], np.array([box.vertices, 2 * box.vertices]), box.faces)
+    >>> [round(float(x), 12) for x in c[:, 0]]  # V = (1 + t/2)^3 = 1 + 1.5 t + 0.75 t^2 + 0.125 t^3
+    [0.125, 0.75, 1.5, 1.0]
+    """
+    times, vertices = np.asarray(times, dtype=float), np.asarray(vertices, dtype=float)
+    w = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
+    inverse = np.linalg.inv(np.vander(w, 4))  # V(w) = Σ a_k w^(3−k)
+    out = np.empty((4, len(times) - 1))
+    for i in range(len(times) - 1):
+        d = vertices[i + 1] - vertices[i]
+        values = [mesh_volume(vertices[i] + s * d, faces) for s in w]
+        a = inverse @ np.array(values)
+        dt = times[i + 1] - times[i]
+        out[:, i] = a / dt ** np.array([3.0, 2.0, 1.0, 0.0])
+    return out
+
+
+@dataclass(frozen=True)
+class SeriesVolume:
+    """Volume of a closed mesh given as a series of frames, linear in time between them, held beyond the ends
+    [m^3]: a piecewise cubic (:func:`series_volume_coefficients`), so V and dV/dt are exact."""
+
+    spline: object  # scipy.interpolate.PPoly
+
+    @classmethod
+    def of(cls, times, vertices, faces) -> "SeriesVolume":
+        from scipy.interpolate import PPoly
+
+        return cls(PPoly(series_volume_coefficients(times, vertices, faces), np.asarray(times, dtype=float)))
+
+    def __call__(self, t: float) -> float:
+        x = self.spline.x
+        return float(self.spline(min(max(t, x[0]), x[-1])))
+
+    def rate(self, t: float) -> float:
+        x = self.spline.x
+        return float(self.spline(t, 1)) if x[0] <= t <= x[-1] else 0.0
+
+    @property
+    def breakpoints(self) -> tuple:
+        return tuple(float(t) for t in self.spline.x)

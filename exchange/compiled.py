@@ -76,7 +76,9 @@ class CompiledNetwork:
         key = (code, popped, holding)
         if key not in self._modes:
             areas = tuple(ex.area if p else None for ex, p in zip(self.network.exchanges, popped))
-            self._modes[key] = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
+            mode = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
+            wrap = getattr(self.network, "wrap_mode", None)
+            self._modes[key] = wrap(mode) if wrap is not None else mode
         return self._modes[key]
 
     def segment_mode(self, code) -> tuple:
@@ -90,12 +92,15 @@ def unsupported_reason(net) -> str | None:
 
     if importlib.util.find_spec("numba") is None:
         return "numba is not installed"
-    if type(net) is not Network:
+    geometry = getattr(net, "lowered_geometry", None)
+    if type(net) is not Network and geometry is None:
         return f"{type(net).__name__} is not a plain Network"
+    if geometry is not None and isinstance(geometry(), str):
+        return geometry()
     for cav in net.cavities:
         if getattr(cav, "kind", "gas") != "gas" or cav.energy not in ENERGY:
             return f"cavity {cav.name}: kind or energy model"
-        if not isinstance(cav.volume, (FixedVolume, TableVolume, ScaledMeshVolume)):
+        if not isinstance(cav.volume, (FixedVolume, TableVolume, ScaledMeshVolume)) and not _splined(net, cav):
             return f"cavity {cav.name}: volume model {type(cav.volume).__name__}"
         for inf in cav.inflators:
             if type(inf) is not MassTemperatureInflator or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
@@ -111,6 +116,17 @@ def unsupported_reason(net) -> str | None:
     return None
 
 
+def _geometry(net) -> dict:
+    """The network's lowered geometry (``lowered_geometry()``: {"areas": {j: (steps x, y, scale table or None)},
+    "volumes": {cavity name: (knots, coefficients (4, pieces))}}), or empty."""
+    lowered = getattr(net, "lowered_geometry", None)
+    return lowered() if lowered is not None else {"areas": {}, "volumes": {}}
+
+
+def _splined(net, cav) -> bool:
+    return cav.name in _geometry(net).get("volumes", {})
+
+
 class _Tables:
     def __init__(self):
         self.x, self.y, self.index = [], [], []
@@ -121,6 +137,10 @@ class _Tables:
         self.y += list(table.y)
         return len(self.index) - 1
 
+    def add_arrays(self, x, y) -> int:
+        """A raw entry (x and y of equal length), e.g. the steps of an area or the knots of a spline."""
+        return self.add(type("T", (), {"x": tuple(x), "y": tuple(y), "extrapolation": "constant"})())
+
     def arrays(self):
         if not self.index:
             self.add(type("T", (), {"x": (0.0,), "y": (0.0,), "extrapolation": "constant"})())
@@ -128,12 +148,24 @@ class _Tables:
                 np.array(self.index, dtype=np.int64).reshape(-1, 3))
 
 
+def _spline_entry(tables, knots, coefficients) -> int:
+    """Knots (table k, their values unused) and coefficients (table k + 1, 4 per piece) of a cubic spline."""
+    knots = np.asarray(knots, dtype=float)
+    k = tables.add_arrays(knots, np.zeros(len(knots)))
+    flat = np.asarray(coefficients, dtype=float).T.ravel()
+    tables.add_arrays(np.zeros(len(flat)), flat)
+    return k
+
+
 def _cavities(net, tables):
     ci, cf = [], []
+    splines = _geometry(net).get("volumes", {})
     for cav, k, c in zip(net.cavities, net.offsets, net._ledger):
         vol = cav.volume
-        kind = 0 if isinstance(vol, FixedVolume) else 1 if isinstance(vol, TableVolume) else 2
-        tab = tables.add(vol.table) if kind == 1 else tables.add(vol.scale) if kind == 2 else -1
+        kind = 3 if cav.name in splines else 0 if isinstance(vol, FixedVolume) else 1 \
+            if isinstance(vol, TableVolume) else 2
+        tab = tables.add(vol.table) if kind == 1 else tables.add(vol.scale) if kind == 2 else \
+            _spline_entry(tables, *splines[cav.name]) if kind == 3 else -1
         size = vol.volume if kind == 0 else vol.mesh_volume if kind == 2 else 0.0
         hA = cav.heat_transfer_coefficient * cav.heat_transfer_area
         ci.append((k, ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses)))
@@ -165,17 +197,24 @@ def _law_parameters(law) -> tuple:
 
 def _exchanges(net, tables):
     ei, ef = [], []
-    for ex in net.exchanges:
+    geometric = _geometry(net).get("areas", {})
+    for j, ex in enumerate(net.exchanges):
         act = ex.activation
         amp = tables.add(act.amplitude) if act is not None and act.amplitude is not None else -1
         window = act is not None
         pop = window and act.pop_pressure is not None
         cd, p1, p2 = _law_parameters(ex.law)
+        steps, scale = -1, -1
+        if j in geometric:
+            x, y, scale_table = geometric[j]
+            steps = tables.add_arrays(np.concatenate([[-np.inf], x]), y)
+            scale = tables.add(scale_table) if scale_table is not None else -1
         ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
-                   int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__]))
+                   int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__], steps,
+                   scale))
         ef.append((ex.area, cd, act.open_time if window else 0.0, act.close_time if window else math.inf,
                    act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2))
-    return np.array(ei, dtype=np.int64).reshape(-1, 8), np.array(ef, dtype=float).reshape(-1, 8)
+    return np.array(ei, dtype=np.int64).reshape(-1, 10), np.array(ef, dtype=float).reshape(-1, 8)
 
 
 def _switches(net):

@@ -13,12 +13,13 @@ Array layout (built by :func:`exchange.compiled.lower`):
   ``breaks`` (nr − 1,) [K], ``linear`` (nr,) 1 where every species has a constant cp, ``M`` (ns,) [kg/mol];
 - tables: ``tx``, ``ty`` concatenated; ``ti`` (ntab, 3): first row, rows, 1 for linear extrapolation;
 - cavities ``ci`` (nc, 6) int: offset, energy (0 adiabatic, 1 isothermal, 2 heat loss), volume kind (0 fixed,
-  1 table, 2 scaled mesh), volume table, ledger offset, species count; ``cf`` (nc, 6): T0 [K], added volume
+  1 table, 2 scaled mesh, 3 cubic spline of time), volume table, ledger offset, species count; ``cf`` (nc, 6): T0 [K], added volume
   [m^3], minimum volume [m^3], h_c·A [W/K], T_amb [K], fixed or mesh volume [m^3];
 - inflators ``ii`` (ni, 3) int: cavity, mass-flow table, temperature table; ``if_`` (ni, 3 + ns): start [s],
   scale [-], gas mass [kg], mass fractions; ``irows`` (ni, nr, 7) total coefficients of the inflator gas;
-- exchanges ``ei`` (ne, 8) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
-  has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`); ``ef`` (ne, 8): area [m^2], Cd [-], open time [s], close time [s], pop pressure [Pa], hold time
+- exchanges ``ei`` (ne, 10) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
+  has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`),
+  geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none); ``ef`` (ne, 8): area [m^2], Cd [-], open time [s], close time [s], pop pressure [Pa], hold time
   [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance: conductance);
   ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.network.EQUALISED_BELOW`); ``op`` (ne,)
   int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
@@ -70,6 +71,31 @@ def table_slope(tx, ty, ti, k, x):
     i = np.searchsorted(tx[s:s + n], x, side="right") - 1
     i = min(max(i, 0), n - 2) + s
     return (ty[i + 1] - ty[i]) / (tx[i + 1] - tx[i])
+
+
+@njit(cache=True, inline="always")
+def step_value(tx, ty, ti, k, x):
+    """Step table k at x: ty[i] for tx[i] <= x < tx[i+1] (right limit at a step; tx[0] is -inf)
+    (:meth:`cases.area_track.AreaTrack.area_in` on a fixed surface)."""
+    s, n = ti[k, 0], ti[k, 1]
+    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
+    return ty[s + max(i, 0)]
+
+
+@njit(cache=True, inline="always")
+def spline_value(tx, ty, ti, k, x):
+    """(value, slope) of the cubic spline k at x: knots in table k, coefficients (4 per piece, highest power
+    first, as scipy's PPoly) in table k + 1; held at its ends, slope 0 outside (:class:`cases.geometry.
+    WrappedVolume`)."""
+    s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]
+    inside = tx[s] <= x <= tx[s + n - 1]
+    x = min(max(x, tx[s]), tx[s + n - 1])
+    i = min(max(np.searchsorted(tx[s:s + n], x, side="right") - 1, 0), n - 2)
+    d = x - tx[s + i]
+    q = c + 4 * i
+    value = ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3]
+    slope = (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2] if inside else 0.0
+    return value, slope
 
 
 @njit(cache=True, inline="always")
@@ -133,11 +159,14 @@ def temperature(rows, breaks, linear, n, nmol, U, T_guess, row):
 
 @njit(cache=True, inline="always")
 def volume_of(ci, cf, tx, ty, ti, i, t):
-    """(V, dV/dt) of cavity i's geometric volume [m^3, m^3/s] (FixedVolume, TableVolume, ScaledMeshVolume)."""
+    """(V, dV/dt) of cavity i's geometric volume [m^3, m^3/s] (FixedVolume, TableVolume, ScaledMeshVolume, a
+    volume wrapped around prescribed bodies: a cubic spline of time)."""
     kind = ci[i, 2]
     if kind == 0:
         return cf[i, 5], 0.0
     k = ci[i, 3]
+    if kind == 3:
+        return spline_value(tx, ty, ti, k, t)
     if kind == 1:
         return table_value(tx, ty, ti, k, t), table_slope(tx, ty, ti, k, t)
     s = table_value(tx, ty, ti, k, t)
@@ -207,7 +236,11 @@ def exchange_area(ei, ef, op, tx, ty, ti, j, t):
     if op[j] == 0:
         return 0.0
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
-    return a * ef[j, 0]
+    base = step_value(tx, ty, ti, ei[j, 8], t) if ei[j, 8] >= 0 else ef[j, 0]
+    if ei[j, 9] >= 0:  # the leakage surface scales with its cavity mesh: area × s²
+        sc = table_value(tx, ty, ti, ei[j, 9], t)
+        base *= sc * sc
+    return a * base
 
 
 @njit(cache=True, inline="always")

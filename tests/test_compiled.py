@@ -27,7 +27,7 @@ from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
 
 LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
-             "airbag_vented"]
+             "airbag_vented", "airbag_impactor", "seal_vent"]  # prescribed bodies: area steps, volume splines
 
 
 def model_of(name):
@@ -59,7 +59,8 @@ def test_jitted_orifice_law_equals_the_pure_function(p_down, gamma):
     assert orifice_mass_flow(*args) == pytest.approx(orifice.orifice_mass_flow(*args), rel=1e-14, abs=0.0)
 
 
-@pytest.mark.parametrize("name", ["blowdown_subsonic", "compression_mesh", "airbag_vented"])
+@pytest.mark.parametrize("name", ["blowdown_subsonic", "compression_mesh", "airbag_vented", "airbag_impactor",
+                                  "seal_vent"])
 def test_jitted_right_hand_side_equals_network_rhs(name):
     model = model_of(name)
     net, fast = model.network, model.network.compiled_solver()
@@ -183,7 +184,9 @@ def assert_same_history(model, traj, times=None):
     got, want = cavity_summary(model, traj, y1, readback), cavity_summary(model, traj, y1)
     for cav in want:
         for key, value in want[cav].items():
-            assert got[cav][key] == pytest.approx(value, rel=1e-12, abs=1e-300), (cav, key)
+            # the time of a flat maximum moves as √(pressure round-off / curvature): 1e-9 of it
+            rel = 1e-9 if key == "peak pressure time [s]" else 1e-12
+            assert got[cav][key] == pytest.approx(value, rel=rel, abs=1e-300), (cav, key)
     return fast
 
 

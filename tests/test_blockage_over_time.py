@@ -1,0 +1,159 @@
+"""Blockage over time: rebounds, brief contacts, penetration and stretching vents, against brute force."""
+import dataclasses
+import math
+import tomllib
+
+import numpy as np
+import pytest
+import trimesh
+
+import blockage
+from blockage.reference import nearest_faces
+from cases.build import build_model
+from cases.runner import run
+from cases.scene import load_scene, scene_from_dict
+from tests.conftest import ROOT, VERIFICATION
+from tests.scenes import tank
+
+TOL, SLOPE, Z0 = 1e-4, 0.02, 1e-3  # contact tolerance [m], plate tilt [-], plate height over x = 0 [m]
+
+
+def grid_vent(path, n=6, size=0.02):
+    """A flat vent of n x n quads in z = 0 (OBJ keeps quads)."""
+    xs = np.linspace(0.0, size, n + 1)
+    lines = [f"v {float(x)!r} {float(y)!r} 0.0" for y in xs for x in xs]
+    lines += [f"f {j * (n + 1) + i + 1} {j * (n + 1) + i + 2} {(j + 1) * (n + 1) + i + 2} {(j + 1) * (n + 1) + i + 1}"
+              for j in range(n) for i in range(n)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def tilted_plate():
+    """A plate whose lower face is z = Z0 + SLOPE·x: node columns come within the tolerance one after another."""
+    plate = trimesh.creation.box(extents=(0.2, 0.2, 0.004))
+    plate.apply_transform(trimesh.transformations.rotation_matrix(-math.atan(SLOPE), (0, 1, 0)))
+    plate.apply_translation((0.0, 0.0, Z0 + 0.002 * math.sqrt(1 + SLOPE ** 2)))
+    return plate
+
+
+def dip_scene(tmp_path, duration, t_end=1.0):
+    """The plate dips once to the vent: the x = 0 column is in contact for ``duration`` [s]."""
+    grid_vent(tmp_path / "vent.obj")
+    tilted_plate().export(tmp_path / "plate.ply")
+    threshold = Z0 - TOL * math.sqrt(1 + SLOPE ** 2)  # s at which the x = 0 column touches
+    peak, tc = threshold + 0.3 * SLOPE * 0.02, 0.37 * t_end  # deep enough for the x <= 6 mm columns
+    w = 0.5 * duration / (1.0 - threshold / peak)  # half-width of the triangular dip
+    (tmp_path / "dip.csv").write_text(f"t,s\n0,0\n{tc - w!r},0\n{tc!r},{peak!r}\n{tc + w!r},0\n{t_end!r},0\n")
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": t_end, "output_interval": t_end / 50}
+    data["body"] = [{"name": "plate", "mesh": "plate.ply", "axis": [0, 0, -1], "displacement_table": "dip.csv"}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["plate"],
+                         "contact_tolerance": TOL}]
+    return scene_from_dict(data, tmp_path / "scene.toml"), (tc - w, tc + w)
+
+
+def brute_force_blocked_area_time(surface, body, window, samples=4001):
+    """∫ obstruction dt by brute force: every node's gap to every plate face at ``samples`` times of the window,
+    then each sign change bisected to machine precision with the same brute-force distance."""
+    verts, faces = np.asarray(body.mesh.vertices), np.asarray(body.mesh.faces)
+
+    def gaps(t, nodes):
+        moved = verts + np.asarray(body.axis) * body.motion.displacement(t)
+        return nearest_faces(surface.vertices[nodes], moved, faces).distances - TOL
+
+    times = np.linspace(*window, samples)
+    nodes = np.arange(len(surface.vertices))
+    inside = np.array([gaps(t, nodes) <= 0 for t in times])
+    weights = _node_weights(surface)
+    total = 0.0
+    for i, node in np.argwhere(inside[1:] != inside[:-1]):
+        a, b = times[i], times[i + 1]
+        entering = inside[i + 1, node]
+        while b - a > 4 * np.finfo(float).eps * b:
+            m = 0.5 * (a + b)
+            if (gaps(m, [node])[0] <= 0) == entering:
+                b = m
+            else:
+                a = m
+        total += weights[node] * (-b if entering else b)
+    return total
+
+
+def _node_weights(surface):
+    w = np.zeros(len(surface.vertices))
+    for f, k, area in zip(surface.faces, surface.face_sizes, surface.face_areas):
+        w[f[:k]] += area / k
+    return w
+
+
+def track_blocked_area_time(track, t_end):
+    edges = np.concatenate([[0.0], track.crossings, [t_end]])
+    return float(np.sum(track.obstruction * np.diff(edges)))
+
+
+@pytest.mark.parametrize("fraction", [1e-4, 1e-6])
+def test_brief_contacts_keep_their_blocked_area_time(tmp_path, fraction):
+    scene, window = dip_scene(tmp_path, duration=fraction * 1.0)
+    model = build_model(scene)
+    track = model.network.areas[0].track
+    surface, _ = model.geometry["surfaces"][0]
+    body = model.geometry["bodies"]["plate"][0]
+    reference = brute_force_blocked_area_time(surface, body, window)
+    assert reference > 0.0 and len(track.crossings) >= 4
+    assert abs(track_blocked_area_time(track, 1.0) - reference) <= 1e-6 * reference
+    assert track(1.0) == pytest.approx(surface.total_area, rel=1e-15)  # released
+
+
+def test_a_box_that_stops_half_through_a_vent_blocks_the_nodes_inside_it(tmp_path):
+    grid_vent(tmp_path / "vent.obj", n=10)
+    box = trimesh.creation.box(extents=(0.0101, 0.03, 0.02))
+    box.apply_translation((0.01, 0.01, 0.0105))  # 0.5 mm above the vent, x in [4.95, 15.05] mm
+    box.export(tmp_path / "box.ply")
+    (tmp_path / "push.csv").write_text("t,s\n0,0\n0.01,0.0105\n1,0.0105\n")  # stops with its centre in z = 0
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": 0.02, "output_interval": 0.001}
+    data["body"] = [{"name": "box", "mesh": "box.ply", "axis": [0, 0, -1], "displacement_table": "push.csv"}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["box"],
+                         "contact_tolerance": 1e-5}]
+    r = run(build_model(scene_from_dict(data, tmp_path / "scene.toml")))
+    track = r.model.network.areas[0].track
+    surface, _ = r.model.geometry["surfaces"][0]
+    x = surface.vertices[:, 0]
+    inside = (x > 0.00495) & (x < 0.01505)
+    np.testing.assert_array_equal(track.source.active_at(0.02), inside)  # 10 mm deep inside the box: active
+    body, blocker = r.model.geometry["bodies"]["box"]
+    final = blockage.evaluate(surface, [(blocker, body.transform(0.02))], 1e-5)
+    np.testing.assert_array_equal(final.active_nodes, inside)
+    assert r.column("vent.area")[-1] == pytest.approx(final.leak_area, rel=1e-12)
+
+
+def test_a_stretching_cavity_carries_its_vent_area(tmp_path):
+    scene_dict = tomllib.loads((VERIFICATION / "compression_mesh.toml").read_text())
+    scene_dict["exchange"] = [{"name": "vent", "from": "bag", "leakage_box": [-1, -1, 0.15, 1, 1, 1],
+                               "discharge_coefficient": 0.6}]
+    scene = scene_from_dict(scene_dict, VERIFICATION / "stretch.toml")
+    r = run(build_model(scene))
+    mesh = trimesh.load(VERIFICATION / "sphere_r200mm.ply", process=True)
+    a0 = blockage.LeakageSurface.from_region(mesh, box=(np.array([-1, -1, 0.15]), np.ones(3))).total_area
+    t = r.column("time")
+    s = np.interp(t, [0.0, 0.01, 0.02, 0.03], [1.0, 0.9, 0.8, 0.85])
+    np.testing.assert_allclose(r.column("vent.area"), s ** 2 * a0, rtol=1e-12)
+
+
+def test_a_rebounding_headform_releases_the_vent_and_converges_monotonically():
+    model = build_model(load_scene(ROOT / "cases" / "airbag_impactor_dynamic.toml"))
+    finals = {}
+    for rtol in (1e-6, 1e-8, 1e-10, 1e-12):
+        ratio = rtol / model.options.rtol
+        options = dataclasses.replace(model.options, rtol=rtol, atol=model.options.atol * ratio)
+        r = run(dataclasses.replace(model, options=options))
+        finals[rtol] = r.column("cushion.pressure")[-1]
+        net = r.model.network
+        s = r.trajectory(r.trajectory.t_final)[net.body_offset]
+        surface, _ = r.model.geometry["surfaces"][0]
+        body, blocker = r.model.geometry["bodies"]["headform"]
+        assert s < 0.0  # rebounded above its start
+        final = blockage.evaluate(surface, [(blocker, body.transform(s))], 0.002, effective_area=1.4e-3)
+        assert r.column("vent.area")[-1] == final.leak_area
+    errors = [abs(finals[k] - finals[1e-12]) for k in (1e-6, 1e-8, 1e-10)]
+    assert errors[0] > errors[1] > errors[2]
+    assert errors[2] <= 1e-7 * finals[1e-12]
