@@ -392,7 +392,8 @@ def test_small_meshes_permuted_or_mirrored_are_errors_and_affine_motion_is_not(t
     with pytest.raises(SceneError, match=r"frame 3 \(t = 0.004 s\): nodes permuted relative to frame 2\? the nodes' "
                                          r"neighbourhoods do not follow any smooth motion \(median affine misfit of "
                                          r"the one-rings 0\.\d+, more than 0.25, over 42 nodes\)"):
-        read_mesh_series(write_npz(tmp_path / "ico.npz", T, permuted(frames(x0), 3), faces))
+        read_mesh_series(write_npz(tmp_path / "ico.npz", T, permuted(np.stack([x0 + [0.0, 0.0, 3.0 * t] for t in T]), 3),
+                                   faces))
     x0, faces = np.array(box.vertices), np.array(box.faces)
     verts = frames(x0)
     verts[3] = verts[3][::-1]  # trimesh's box: the reversed order is the point reflection through the centre
