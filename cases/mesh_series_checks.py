@@ -71,10 +71,11 @@ def check_frames(frames, reference_vertices=None, reference_rtol: float = REFERE
     if reference_vertices is not None:
         _check_reference(first, reference_vertices, reference_rtol)
     edges = surface_edges(first.faces, (first.faces >= 0).sum(axis=1))
-    rings = None
+    rings, lengths = None, _lengths(first.points, edges)
     for i in range(1, len(frames)):
+        before, lengths = lengths, _lengths(frames[i].points, edges)
         if not _same_ids(frames, i):
-            _check_edges(frames, i, edges)
+            _check_edges(frames, i, edges, before, lengths)
             rings = _rings(edges, len(first.points)) if rings is None else rings
             _check_rings(frames, i, rings)
 
@@ -151,13 +152,16 @@ def _same_ids(frames, i) -> bool:
     return compared
 
 
-def _check_edges(frames, i, edges) -> None:
+def _lengths(points, edges) -> np.ndarray:
+    d = points[edges[:, 0]] - points[edges[:, 1]]
+    return np.sqrt(np.einsum("ij,ij->i", d, d))
+
+
+def _check_edges(frames, i, edges, before, after) -> None:
     """Every edge within EDGE_RATIO of its length in the previous frame (a permuted frame scrambles edges)."""
     if not len(edges):
         return
-    prev, cur = frames[i - 1].points, frames[i].points
-    before = np.linalg.norm(prev[edges[:, 0]] - prev[edges[:, 1]], axis=1)
-    after = np.linalg.norm(cur[edges[:, 0]] - cur[edges[:, 1]], axis=1)
+    prev = frames[i - 1].points
     floor = 1e-9 * max(float(np.linalg.norm(np.ptp(prev, axis=0))), np.finfo(float).tiny)
     ratio = (after + floor) / (before + floor)
     bad = (ratio > EDGE_RATIO) | (ratio < 1.0 / EDGE_RATIO)
@@ -178,7 +182,7 @@ def _rings(edges, n: int, most: int = RING_SAMPLE) -> list:
     both = both[np.lexsort((both[:, 1], both[:, 0]))]
     degree = np.bincount(both[:, 0], minlength=n)
     start = np.concatenate([[0], np.cumsum(degree)[:-1]])
-    sample = np.arange(0, n, -(-n // most))
+    sample = np.arange(0, n, max(1, -(-n // most)))
     groups = []
     for d in np.unique(degree[sample]):
         nodes = sample[degree[sample] == d]

@@ -128,8 +128,8 @@ def _polydata_cells(mesh):
     for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, len(sizes)]):
         k = int(sizes[lo])
         blocks.append(("polygon", conn[offsets[lo]:offsets[hi]].reshape(hi - lo, k)))
-    return blocks + [(kind, np.zeros((n, 0), np.int64)) for kind, n in (("line", mesh.n_lines), ("vertex", mesh.n_verts))
-                     if n]
+    others = (("line", mesh.n_lines), ("vertex", mesh.n_verts))
+    return blocks + [(kind, np.zeros((n, 0), np.int64)) for kind, n in others if n]
 
 
 def _pvd_entries(path: Path):

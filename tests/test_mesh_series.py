@@ -392,11 +392,31 @@ def test_small_meshes_permuted_or_mirrored_are_errors_and_affine_motion_is_not(t
     with pytest.raises(SceneError, match=r"frame 3 \(t = 0.004 s\): nodes permuted relative to frame 2\? the nodes' "
                                          r"neighbourhoods do not follow any smooth motion \(median affine misfit of "
                                          r"the one-rings 0\.\d+, more than 0.25, over 42 nodes\)"):
-        read_mesh_series(write_npz(tmp_path / "ico.npz", T, permuted(np.stack([x0 + [0.0, 0.0, 3.0 * t] for t in T]), 3),
-                                   faces))
+        moving = np.stack([x0 + [0.0, 0.0, 3.0 * t] for t in T])
+        read_mesh_series(write_npz(tmp_path / "ico.npz", T, permuted(moving, 3), faces))
     x0, faces = np.array(box.vertices), np.array(box.faces)
     verts = frames(x0)
     verts[3] = verts[3][::-1]  # trimesh's box: the reversed order is the point reflection through the centre
     with pytest.raises(SceneError, match=r"frame 3 \(t = 0.004 s\): nodes permuted relative to frame 2\? it is the "
                                          r"mirror image of frame 2 \(8 of 8 3-D neighbourhoods reflected"):
         read_mesh_series(write_npz(tmp_path / "box.npz", T, verts, faces))
+
+
+def test_vtu_frames_meshio_cannot_read_are_read_with_vtk(tmp_path):
+    """meshio 5.3 fails on LZ4-compressed VTU; the reader falls back to pyvista/VTK and gets the same arrays."""
+    import pyvista
+    import vtk
+
+    x0, faces = sphere()
+    verts = frames(x0)
+    path = tmp_path / "s.pvd"
+    files = write_pvd(path, T, verts, faces, frame_format="vtu")
+    for i, file in enumerate(files):
+        grid = pyvista.PolyData(verts[i], faces=np.column_stack([np.full(len(faces), 3), faces]).ravel())
+        writer = vtk.vtkXMLUnstructuredGridWriter()
+        writer.SetFileName(str(file))
+        writer.SetInputData(grid.cast_to_unstructured_grid())
+        writer.SetCompressorTypeToLZ4()
+        writer.Write()
+    s = read_mesh_series(path, where=KEY)
+    assert np.array_equal(s.vertices, verts) and np.array_equal(s.faces, faces)
