@@ -219,6 +219,9 @@ def read_xdmf(path: Path) -> list:
         reader = TimeSeriesReader(path)
     except Exception as exc:  # meshio raises ReadError, ParseError, KeyError ...
         raise SeriesInvalid(f"cannot read the XDMF time series: {exc!s} ({type(exc).__name__})") from None
+    for item in reader.domain.iter("DataItem"):  # meshio opens raw binary files relative to the working folder
+        if item.get("Format") == "Binary" and item.text and not Path(item.text.strip()).is_absolute():
+            item.text = str(path.parent / item.text.strip())
     with reader:
         try:
             points0, _ = reader.read_points_cells()
@@ -236,6 +239,8 @@ def _xdmf_frame(reader, k, points0, faces0) -> Frame:
     t, point_data, _ = reader.read_data(k)
     label = frame_label(k, Frame(t, None, None))
     grid = reader.collection[k]
+    if grid.get("GridType") == "Collection":
+        raise SeriesInvalid(f"{label}: a spatial collection (several parts): one surface a series; merge the parts")
     topology, geometry = _xdmf_child(grid, "Topology"), _xdmf_child(grid, "Geometry")
     faces = faces0 if topology is None else surface_faces(_xdmf_cells(reader, topology), label)
     if geometry is not None:

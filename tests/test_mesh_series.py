@@ -405,7 +405,7 @@ def test_small_meshes_permuted_or_mirrored_are_errors_and_affine_motion_is_not(t
 def test_vtu_frames_meshio_cannot_read_are_read_with_vtk(tmp_path):
     """meshio 5.3 fails on LZ4-compressed VTU; the reader falls back to pyvista/VTK and gets the same arrays."""
     import pyvista
-    import vtk
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
     x0, faces = sphere()
     verts = frames(x0)
@@ -413,10 +413,29 @@ def test_vtu_frames_meshio_cannot_read_are_read_with_vtk(tmp_path):
     files = write_pvd(path, T, verts, faces, frame_format="vtu")
     for i, file in enumerate(files):
         grid = pyvista.PolyData(verts[i], faces=np.column_stack([np.full(len(faces), 3), faces]).ravel())
-        writer = vtk.vtkXMLUnstructuredGridWriter()
+        writer = vtkXMLUnstructuredGridWriter()
         writer.SetFileName(str(file))
         writer.SetInputData(grid.cast_to_unstructured_grid())
         writer.SetCompressorTypeToLZ4()
         writer.Write()
     s = read_mesh_series(path, where=KEY)
     assert np.array_equal(s.vertices, verts) and np.array_equal(s.faces, faces)
+
+
+@pytest.mark.parametrize("data_format", ["HDF", "Binary"])
+def test_xdmf_with_hdf5_or_raw_binary_data(tmp_path, monkeypatch, data_format):
+    """HDF5 (the `hdf5` extra: h5py) as FEniCS and ParaView write it; raw binary files read from another folder."""
+    import meshio
+
+    if data_format == "HDF":
+        pytest.importorskip("h5py")
+    x0, faces = sphere()
+    verts = frames(x0)
+    monkeypatch.chdir(tmp_path)  # meshio writes raw binary files into the working folder
+    with meshio.xdmf.TimeSeriesWriter(tmp_path / "u.xdmf", data_format=data_format) as w:
+        w.write_points_cells(x0, [("triangle", faces)])
+        for t, x in zip(T, verts):
+            w.write_data(t, point_data={"u": x - x0})
+    monkeypatch.chdir(tmp_path.parent)
+    s = read_mesh_series(tmp_path / "u.xdmf", where=KEY)
+    assert np.array_equal(s.vertices, x0 + (verts - x0)) and np.array_equal(s.faces, faces)
