@@ -61,8 +61,9 @@ SAME_ORDER = "every frame must list the nodes in the order of frame 0"
 
 def check_frames(frames, reference_vertices=None, reference_rtol: float = REFERENCE_RTOL) -> None:
     """Raise SeriesInvalid on the first problem of ``frames`` (a list of mesh_series_io.Frame)."""
-    if not frames:
-        raise SeriesInvalid("no frames")
+    if len(frames) < 2:
+        raise SeriesInvalid(f"{len(frames)} frame{'' if frames else 's'}: a mesh series needs at least 2 (for a fixed "
+                            f"surface, give a mesh)")
     _check_times(frames)
     first = frames[0]
     _check_faces(first.faces, len(first.points), frame_label(0, first))

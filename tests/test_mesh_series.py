@@ -342,6 +342,8 @@ def test_bad_files_are_one_line_errors(tmp_path):
     with pytest.raises(SceneError, match=r"s.obj: body\[0\].mesh_series: unknown mesh-series format '.obj': expected "
                                          r"one of .pvd \(ParaView series\), .xdmf"):
         read_mesh_series(tmp_path / "s.obj", where=KEY)
+    with pytest.raises(SceneError, match=r"one.npz: 1 frame: a mesh series needs at least 2 \(for a fixed surface"):
+        read_mesh_series(write_npz(tmp_path / "one.npz", T[:1], frames(x0)[:1], faces))
     with pytest.raises(SceneError, match=r"none.pvd: body\[0\].mesh_series: file not found$"):
         read_mesh_series(tmp_path / "none.pvd", where=KEY)
     (tmp_path / "bad.pvd").write_text("<VTKFile type='PolyData'/>")
@@ -439,3 +441,35 @@ def test_xdmf_with_hdf5_or_raw_binary_data(tmp_path, monkeypatch, data_format):
     monkeypatch.chdir(tmp_path.parent)
     s = read_mesh_series(tmp_path / "u.xdmf", where=KEY)
     assert np.array_equal(s.vertices, x0 + (verts - x0)) and np.array_equal(s.faces, faces)
+
+
+def test_series_volume_is_exact_between_frames():
+    """The cubic per interval equals the divergence-theorem volume of the interpolated mesh at any t, and its rate
+    the derivative; for a cube scaled by s(t) linear between frames, V = s^3 (closed form)."""
+    import trimesh
+
+    from cases.mesh_series import SeriesVolume
+    from cavity.volume import mesh_volume
+
+    x0, faces = sphere()
+    s = MeshSeries(T, frames(x0), faces)
+    vol = SeriesVolume(s)
+    for t in np.linspace(-1e-3, 8e-3, 37):
+        assert vol(t) == pytest.approx(mesh_volume(s.at(t), faces), rel=1e-13)
+        h = 1e-7
+        if T[0] < t - h and t + h < T[-1] and not np.any(np.abs(T - t) < 2 * h):
+            assert vol.rate(t) == pytest.approx((vol(t + h) - vol(t - h)) / (2 * h), rel=1e-6)
+    assert vol.rate(-1e-3) == 0.0 and vol.rate(T[-1]) == 0.0 and vol.breakpoints == tuple(T)
+    cube = trimesh.creation.box()
+    scale = np.array([1.0, 1.5, 1.2])
+    v = SeriesVolume(MeshSeries([0.0, 1.0, 3.0], cube.vertices[None] * scale[:, None, None], cube.faces))
+    for t, sc, ds in ((0.5, 1.25, 0.5), (2.0, 1.35, -0.15)):
+        assert v(t) == pytest.approx(sc ** 3, rel=1e-14) and v.rate(t) == pytest.approx(3 * sc * sc * ds, rel=1e-13)
+
+
+def test_quads_split_into_triangles_for_the_volume():
+    x0, faces = plate()
+    s = MeshSeries(T, frames(x0), faces)
+    tri = s.triangles()
+    assert tri.shape == (8 * 2 + 8, 3) and (tri >= 0).all()
+    assert np.isclose(sum(np.linalg.norm(np.cross(x0[b] - x0[a], x0[c] - x0[a]), axis=0) / 2 for a, b, c in tri), 0.06)
