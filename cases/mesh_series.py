@@ -27,12 +27,12 @@ import numpy as np
 
 from .bodies import VertexTrajectory
 from .errors import SceneError
-from .mesh_series_checks import EDGE_RATIO, REFERENCE_RTOL, check_frames
+from .mesh_series_checks import EDGE_RATIO, REFERENCE_RTOL, RING_MISFIT, check_frames
 from .mesh_series_io import SeriesInvalid, read_npz, read_pvd, read_xdmf
 from .mesh_series_write import write_npz, write_pvd, write_xdmf
 
-__all__ = ["MeshSeries", "SeriesVolume", "volume_cubic", "read_mesh_series", "write_pvd", "write_xdmf", "write_npz", "EDGE_RATIO", "REFERENCE_RTOL",
-           "SUFFIXES"]
+__all__ = ["MeshSeries", "SeriesVolume", "volume_cubic", "read_mesh_series", "write_pvd", "write_xdmf", "write_npz",
+           "EDGE_RATIO", "RING_MISFIT", "REFERENCE_RTOL", "SUFFIXES"]
 
 #: The readers by file suffix.
 SUFFIXES = {".pvd": "ParaView series", ".xdmf": "XDMF time series", ".xmf": "XDMF time series", ".npz": "NumPy .npz"}
