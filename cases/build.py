@@ -14,7 +14,7 @@ from cavity.inflator import MassTemperatureInflator, TankTestInflator
 from cavity.inflator_orifice import DualPressureInflator, PressureMassInflator
 from cavity.integration import SolverOptions
 from cavity.species import Species, builtin_species, species_from_coolprop
-from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, TableVolume, closed_mesh_volume
+from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, SeriesVolume, TableVolume, closed_mesh_volume
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
 from exchange.activation import Activation
 from exchange.discharge import DischargeTable
@@ -23,7 +23,8 @@ from exchange.laws import (BulkViscosityLaw, FabricLeakageLaw, FluxLaw, GraefeLa
 from exchange.leakage_table import LeakageTable
 from exchange.vent import Ambient, Exchange
 
-from .build_geometry import Driver, build_bodies, build_contact, build_leak_area, build_wrapped_volume, cavity_mesh
+from .build_geometry import (Driver, build_bodies, build_contact, build_leak_area, build_wrapped_volume, cavity_mesh,
+                             series_mesh)
 from .errors import SceneError
 from .scene_network import BodyForces, SceneNetwork
 from .scene import Scene
@@ -50,7 +51,8 @@ def build_model(scene: Scene) -> Model:
     y_amb = gas.mass_fractions(amb.gas, molar=amb.gas_by_mole)
     ambient = Ambient(amb.pressure, amb.temperature, tuple(y_amb), gas.mixture(y_amb))
     t_end = scene.time.end
-    geometric = bool(scene.body) or any(e.leakage_surface or e.leakage_box for e in scene.exchange)
+    geometric = bool(scene.body) or any(e.leakage_surface or e.leakage_box or e.leakage_nodes
+                                        for e in scene.exchange) or any(c.mesh_series for c in scene.cavity)
     geo = _geometry(scene, t_end) if geometric else None
     cavities = tuple(_cavity(scene, gas, i, geo) for i in range(len(scene.cavity)))
     names = [c.name for c in cavities]
@@ -136,16 +138,32 @@ def _volume(scene: Scene, i: int):
 def _geometry(scene: Scene, t_end: float) -> dict:
     """Bodies, the θ driver, wrapped volumes and blocked areas of a scene with geometry."""
     bodies = build_bodies(scene)
-    meshes = {c.name: cavity_mesh(scene, i) for i, c in enumerate(scene.cavity) if c.mesh}
+    series = {c.name: series_mesh(scene, c.mesh_series, f"cavity[{i}].mesh_series")
+              for i, c in enumerate(scene.cavity) if c.mesh_series}
+    meshes = {c.name: cavity_mesh(scene, i) for i, c in enumerate(scene.cavity) if c.mesh and not c.mesh_series}
+    meshes.update({name: mesh for name, (_, mesh) in series.items()})
     extent = max([float(np.linalg.norm(m.extents)) for m in meshes.values()]
                  + [float(np.linalg.norm(b.mesh.extents)) for b, _ in bodies.values()] + [1e-3])
     driver = Driver(bodies, t_end, extent)
     volumes = {c.name: build_wrapped_volume(scene, i, meshes[c.name], driver)
                for i, c in enumerate(scene.cavity) if c.wrapped_by}
-    areas, surfaces = zip(*[build_leak_area(scene, j, meshes, driver) for j in range(len(scene.exchange))]) \
-        if scene.exchange else ((), ())
+    for name, (s, mesh) in series.items():
+        _closed(scene, name, mesh)
+        volumes[name] = SeriesVolume.of(s.times, s.vertices, s.triangles())
+    moving = {name: (s.times, s.vertices) for name, (s, _) in series.items()}
+    areas, surfaces = zip(*[build_leak_area(scene, j, meshes, driver, moving)
+                            for j in range(len(scene.exchange))]) if scene.exchange else ((), ())
     return {"bodies": bodies, "driver": driver, "volumes": volumes, "areas": areas, "surfaces": surfaces,
             "meshes": meshes}
+
+
+def _closed(scene, name, mesh) -> None:
+    """Frame 0 of a cavity's mesh series must bound a volume."""
+    i = [c.name for c in scene.cavity].index(name)
+    try:
+        closed_mesh_volume(mesh, name=scene.cavity[i].mesh_series)
+    except MeshError as exc:
+        raise SceneError(scene.path, f"cavity[{i}].mesh_series", f"frame 0: {exc}") from None
 
 
 def _scene_network(scene, gas, cavities, exchanges, ambient, geo):

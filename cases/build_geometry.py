@@ -16,11 +16,11 @@ from .tables_io import read_table
 __all__ = ["build_bodies", "Driver", "build_wrapped_volume", "build_leak_area", "load_mesh", "build_contact"]
 
 
-def load_mesh(scene, file: str, where: str):
+def load_mesh(scene, file: str, where: str, process: bool = True):
     import trimesh
 
     try:
-        return trimesh.load(scene.base / file, force="mesh", process=True)
+        return trimesh.load(scene.base / file, force="mesh", process=process)
     except Exception as exc:  # trimesh raises many types for unreadable files
         raise SceneError(scene.path, where, f"cannot read mesh {file!r}: {exc}") from None
 
@@ -28,8 +28,8 @@ def load_mesh(scene, file: str, where: str):
 def _body_mesh(scene, spec, where):
     import trimesh
 
-    if spec.mesh:
-        return load_mesh(scene, spec.mesh, f"{where}.mesh")
+    if spec.mesh:  # a vertex trajectory follows the file's own node order
+        return load_mesh(scene, spec.mesh, f"{where}.mesh", process=not spec.vertex_trajectory)
     if spec.sphere:
         x, y, z, r = spec.sphere
         m = trimesh.creation.icosphere(subdivisions=spec.sphere_subdivisions, radius=r)
@@ -42,20 +42,23 @@ def _body_mesh(scene, spec, where):
 
 
 def _trajectory(scene, b, mesh, where) -> VertexTrajectory:
-    """Vertex positions from an .npz file with arrays ``times`` (k,) [s] and ``vertices`` (k, n, 3) [m]."""
-    try:
-        with np.load(scene.base / b.vertex_trajectory) as data:
-            times, verts = np.asarray(data["times"], float), np.asarray(data["vertices"], float)
-    except (OSError, KeyError, ValueError) as exc:
-        raise SceneError(scene.path, where, f"cannot read {b.vertex_trajectory!r} (an .npz with 'times' and "
-                                            f"'vertices'): {exc}") from None
-    n = len(mesh.vertices)
-    if verts.ndim != 3 or verts.shape[1:] != (n, 3) or times.shape != (verts.shape[0],):
-        raise SceneError(scene.path, where, f"expected times (k,) and vertices (k, {n}, 3) matching the mesh, got "
-                                            f"{times.shape} and {verts.shape}")
-    if not (np.all(np.isfinite(verts)) and np.all(np.isfinite(times)) and np.all(np.diff(times) > 0)):
-        raise SceneError(scene.path, where, "times must be strictly increasing and all values finite")
-    return VertexTrajectory(times, verts)
+    """Vertex positions from an .npz file with arrays ``times`` (k,) [s] and ``vertices`` (k, n, 3) [m]; frame 0
+    must be the mesh node by node (a trajectory in another vertex order is an error)."""
+    from .mesh_series import read_mesh_series
+
+    series = read_mesh_series(scene.base / b.vertex_trajectory, where=where, scene_path=scene.path,
+                              reference_vertices=np.asarray(mesh.vertices), reference_faces=np.asarray(mesh.faces))
+    return VertexTrajectory(series.times, series.vertices)
+
+
+def series_mesh(scene, file: str, where: str):
+    """(MeshSeries, trimesh of frame 0 in the series' own node order) of a mesh series."""
+    import trimesh
+
+    from .mesh_series import read_mesh_series
+
+    series = read_mesh_series(scene.base / file, where=where, scene_path=scene.path)
+    return series, trimesh.Trimesh(series.vertices[0], series.triangles(), process=False)
 
 
 def build_bodies(scene) -> dict:
@@ -67,6 +70,10 @@ def build_bodies(scene) -> dict:
             axis = unit(b.axis, f"{where}.axis")
         except ValueError as exc:
             raise SceneError(scene.path, f"{where}.axis", str(exc)) from None
+        if b.mesh_series:
+            motion, mesh = series_mesh(scene, b.mesh_series, f"{where}.mesh_series")
+            out[b.name] = (Body(b.name, mesh, axis, motion), blockage.Blocker(mesh))
+            continue
         mesh = _body_mesh(scene, b, where)
         if b.mass:
             motion = DynamicMotion(b.mass, b.initial_velocity, b.gravity)

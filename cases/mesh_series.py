@@ -31,7 +31,7 @@ from .mesh_series_checks import EDGE_RATIO, REFERENCE_RTOL, RING_MISFIT, check_f
 from .mesh_series_io import SeriesInvalid, read_npz, read_pvd, read_xdmf
 from .mesh_series_write import write_npz, write_pvd, write_xdmf
 
-__all__ = ["MeshSeries", "SeriesVolume", "volume_cubic", "read_mesh_series", "write_pvd", "write_xdmf", "write_npz",
+__all__ = ["MeshSeries", "read_mesh_series", "write_pvd", "write_xdmf", "write_npz",
            "EDGE_RATIO", "RING_MISFIT", "REFERENCE_RTOL", "SUFFIXES"]
 
 #: The readers by file suffix.
@@ -121,77 +121,6 @@ class MeshSeries(VertexTrajectory):
             return np.zeros(len(self.times) - 1)
         step = np.linalg.norm(np.diff(self.vertices, axis=0), axis=2).max(axis=1)
         return step / np.diff(self.times)
-
-
-def volume_cubic(start, end, triangles) -> np.ndarray:
-    r"""Coefficients (c0, c1, c2, c3) [m^3] of the volume enclosed by a triangle surface whose nodes move
-    linearly from ``start`` to ``end``: V(w) = c0 + c1 w + c2 w^2 + c3 w^3 for x = start + w (end - start).
-
-    .. math:: V(w) = \frac{1}{6}\sum_f \det[\mathbf x_a, \mathbf x_b, \mathbf x_c],\quad
-              \mathbf x = \mathbf p + w\,\mathbf q
-
-    and the determinant is trilinear, so c0 = Σ det[p_a, p_b, p_c]/6, c1 = Σ (det[q_a, p_b, p_c] +
-    det[p_a, q_b, p_c] + det[p_a, p_b, q_c])/6, c2 likewise with two q's, c3 = Σ det[q_a, q_b, q_c]/6 (the
-    divergence theorem, as cavity.volume.mesh_volume). Exact, not sampled.
-
-    Parameters
-    ----------
-    start, end : (n, 3) float
-        Node positions [m] at w = 0 and w = 1.
-    triangles : (m, 3) int
-        Closed surface, counter-clockwise seen from outside.
-
-    >>> import trimesh
-    >>> cube = trimesh.creation.box()  # 1 m^3; scaled by (1 + w): V = (1 + w)^3
-    >>> volume_cubic(cube.vertices, 2.0 * cube.vertices, cube.faces).round(12).tolist()
-    [1.0, 3.0, 3.0, 1.0]
-    """
-    p, q = np.asarray(start, dtype=float), np.asarray(end, dtype=float) - np.asarray(start, dtype=float)
-    tri = np.asarray(triangles, dtype=np.int64)
-
-    def det(a, b, c):
-        return float(np.einsum("ij,ij->", a[tri[:, 0]], np.cross(b[tri[:, 1]], c[tri[:, 2]])))
-
-    return np.array([det(p, p, p), det(q, p, p) + det(p, q, p) + det(p, p, q),
-                     det(p, q, q) + det(q, p, q) + det(q, q, p), det(q, q, q)]) / 6.0
-
-
-@dataclass(frozen=True, eq=False)
-class SeriesVolume:
-    """The volume enclosed by a closed mesh series [m^3], exact: a cubic in t on every frame interval, held
-    beyond the ends. Answers like the cavity.volume models: ``volume(t)``, ``rate(t)`` (dV/dt [m^3/s], taken
-    from the right at a frame time, 0 beyond the ends) and ``breakpoints``."""
-
-    series: MeshSeries
-
-    def __post_init__(self):
-        s, tri = self.series, self.series.triangles()
-        pairs = [(i, i + 1) for i in range(s.n_frames - 1)] or [(0, 0)]
-        coefficients = np.array([volume_cubic(s.vertices[i], s.vertices[j], tri) for i, j in pairs])
-        object.__setattr__(self, "coefficients", coefficients)  # (k - 1, 4), or (1, 4) for one frame
-
-    def _piece(self, t):
-        """(coefficients, w in [0, 1], interval length [s]) at t."""
-        times, i = self.series.times, self.series.interval(t)
-        if len(times) < 2:
-            return self.coefficients[0], 0.0, 1.0
-        dt = times[i + 1] - times[i]
-        return self.coefficients[i], min(max((t - times[i]) / dt, 0.0), 1.0), dt
-
-    def __call__(self, t: float) -> float:
-        c, w, _ = self._piece(t)
-        return float(c[0] + w * (c[1] + w * (c[2] + w * c[3])))
-
-    def rate(self, t: float) -> float:
-        times = self.series.times
-        if t < times[0] or t >= times[-1]:
-            return 0.0
-        c, w, dt = self._piece(t)
-        return float((c[1] + w * (2.0 * c[2] + 3.0 * w * c[3])) / dt)
-
-    @property
-    def breakpoints(self) -> tuple:
-        return self.series.breakpoints
 
 
 def read_mesh_series(path, *, where: str = "", scene_path=None, reference_vertices=None, reference_faces=None,

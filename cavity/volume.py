@@ -13,7 +13,7 @@ import numpy as np
 from .tables import Table
 
 __all__ = ["mesh_volume", "closed_mesh_volume", "MeshError", "FixedVolume", "TableVolume", "ScaledMeshVolume",
-           "effective_volume", "SeriesVolume", "series_volume_coefficients"]
+           "effective_volume", "SeriesVolume", "series_volume_coefficients", "volume_cubic"]
 
 
 class MeshError(ValueError):
@@ -132,26 +132,42 @@ class ScaledMeshVolume:
         return self.scale.breakpoints
 
 
-def series_volume_coefficients(times, vertices, faces) -> np.ndarray:
-    r"""Exact volume of a closed mesh whose vertices move linearly between frames, as cubics in time.
+def volume_cubic(start, end, triangles) -> np.ndarray:
+    r"""Coefficients (c0, c1, c2, c3) [m^3] of the volume enclosed by a triangle surface whose nodes move
+    linearly from ``start`` to ``end``: V(w) = c0 + c1 w + c2 w^2 + c3 w^3 for x = start + w (end - start).
 
-    With :math:`\mathbf x(t) = \mathbf x_i + w(\mathbf x_{i+1} - \mathbf x_i)`, :math:`w = (t - t_i)/(t_{i+1} - t_i)`,
-    each term :math:`\mathbf x_0\cdot(\mathbf x_1\times\mathbf x_2)/6` of :func:`mesh_volume` is a cubic in w, so
-    V(t) is a cubic on every frame interval: its four coefficients come from V at w = 0, 1/3, 2/3, 1 (Lagrange,
-    exact up to round-off).
+    .. math:: V(w) = \frac{1}{6}\sum_f \det[\mathbf x_a, \mathbf x_b, \mathbf x_c],\quad
+              \mathbf x = \mathbf p + w\,\mathbf q
+
+    and the determinant is trilinear, so c0 = Σ det[p_a, p_b, p_c]/6, c1 = Σ (det[q_a, p_b, p_c] +
+    det[p_a, q_b, p_c] + det[p_a, p_b, q_c])/6, c2 likewise with two q's, c3 = Σ det[q_a, q_b, q_c]/6 (the
+    divergence theorem, as :func:`mesh_volume`). Exact, not sampled.
 
     Parameters
     ----------
-    times : (k,) float
-        Frame times [s], increasing.
-    vertices : (k, n, 3) float
-        [m]
-    faces : (m, 3) int
+    start, end : (n, 3) float
+        Node positions [m] at w = 0 and w = 1.
+    triangles : (m, 3) int
+        Closed surface, counter-clockwise seen from outside.
 
-    Returns
-    -------
-    (4, k − 1) float
-        Coefficients of (t − t_i)³, ², ¹, ⁰ per interval, as :class:`scipy.interpolate.PPoly` takes them.
+    >>> import trimesh
+    >>> cube = trimesh.creation.box()  # 1 m^3; scaled by (1 + w): V = (1 + w)^3
+    >>> volume_cubic(cube.vertices, 2.0 * cube.vertices, cube.faces).round(12).tolist()
+    [1.0, 3.0, 3.0, 1.0]
+    """
+    p, q = np.asarray(start, dtype=float), np.asarray(end, dtype=float) - np.asarray(start, dtype=float)
+    tri = np.asarray(triangles, dtype=np.int64)
+
+    def det(a, b, c):
+        return float(np.einsum("ij,ij->", a[tri[:, 0]], np.cross(b[tri[:, 1]], c[tri[:, 2]])))
+
+    return np.array([det(p, p, p), det(q, p, p) + det(p, q, p) + det(p, p, q),
+                     det(p, q, q) + det(q, p, q) + det(q, q, p), det(q, q, q)]) / 6.0
+
+
+def series_volume_coefficients(times, vertices, faces) -> np.ndarray:
+    """(4, k − 1) coefficients of (t − t_i)³, ², ¹, ⁰ of the volume of a closed mesh series on each frame interval
+    (:func:`volume_cubic` rescaled to time), as :class:`scipy.interpolate.PPoly` takes them.
 
     >>> import trimesh
     >>> box = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
@@ -160,15 +176,10 @@ def series_volume_coefficients(times, vertices, faces) -> np.ndarray:
     [0.125, 0.75, 1.5, 1.0]
     """
     times, vertices = np.asarray(times, dtype=float), np.asarray(vertices, dtype=float)
-    w = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
-    inverse = np.linalg.inv(np.vander(w, 4))  # V(w) = Σ a_k w^(3−k)
     out = np.empty((4, len(times) - 1))
     for i in range(len(times) - 1):
-        d = vertices[i + 1] - vertices[i]
-        values = [mesh_volume(vertices[i] + s * d, faces) for s in w]
-        a = inverse @ np.array(values)
-        dt = times[i + 1] - times[i]
-        out[:, i] = a / dt ** np.array([3.0, 2.0, 1.0, 0.0])
+        c = volume_cubic(vertices[i], vertices[i + 1], faces)
+        out[:, i] = c[::-1] / (times[i + 1] - times[i]) ** np.array([3.0, 2.0, 1.0, 0.0])
     return out
 
 
@@ -190,8 +201,9 @@ class SeriesVolume:
         return float(self.spline(min(max(t, x[0]), x[-1])))
 
     def rate(self, t: float) -> float:
+        """dV/dt [m^3/s], from the right at a frame time, 0 beyond the ends."""
         x = self.spline.x
-        return float(self.spline(t, 1)) if x[0] <= t <= x[-1] else 0.0
+        return float(self.spline(t, 1)) if x[0] <= t < x[-1] else 0.0
 
     @property
     def breakpoints(self) -> tuple:

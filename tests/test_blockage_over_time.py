@@ -157,3 +157,95 @@ def test_a_rebounding_headform_releases_the_vent_and_converges_monotonically():
     errors = [abs(finals[k] - finals[1e-12]) for k in (1e-6, 1e-8, 1e-10)]
     assert errors[0] > errors[1] > errors[2]
     assert errors[2] <= 1e-7 * finals[1e-12]
+
+
+def write_pvd_with_pyvista(folder, stem, times, vertices, faces):
+    """A ParaView series written as a user would: one .vtp per frame with pyvista, and the .pvd collection."""
+    import pyvista as pv
+
+    rows = []
+    for k, (t, x) in enumerate(zip(times, vertices)):
+        f = faces[k] if isinstance(faces, list) else faces  # per frame, or one for all
+        name = f"{stem}_{k:03d}.vtp"
+        pv.PolyData(np.asarray(x, dtype=float), np.hstack([np.full((len(f), 1), f.shape[1]), f]).ravel()).save(
+            folder / name)
+        rows.append(f'<DataSet timestep="{float(t)!r}" part="0" file="{name}"/>')
+    (folder / f"{stem}.pvd").write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n'
+                                        "<Collection>\n" + "\n".join(rows) + "\n</Collection>\n</VTKFile>\n")
+    return f"{stem}.pvd"
+
+
+def plate_frames(times):
+    """The tilted plate's vertices following a down-and-up motion, frame by frame."""
+    plate = tilted_plate()
+    s = np.interp(times, [0.0, 0.01, 0.02, 0.03], [0.0, 1.2e-3, 1.2e-3, 0.0])
+    return plate, plate.vertices[None] - s[:, None, None] * np.array([0.0, 0.0, 1.0])
+
+
+def series_scenes(tmp_path):
+    grid_vent(tmp_path / "vent.obj")
+    times = np.linspace(0.0, 0.03, 7)
+    plate, frames = plate_frames(times)
+    plate.export(tmp_path / "plate.ply")
+    np.savez(tmp_path / "plate.npz", times=times, vertices=frames)
+    pvd = write_pvd_with_pyvista(tmp_path, "plate", times, frames, np.asarray(plate.faces))
+    scenes = []
+    for body in ({"mesh": "plate.ply", "vertex_trajectory": "plate.npz"}, {"mesh_series": pvd}):
+        data = tank(pressure=2.0e5)
+        data["time"] = {"end": 0.03, "output_interval": 0.0005}
+        data["body"] = [{"name": "plate", **body}]
+        data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["plate"],
+                             "contact_tolerance": TOL}]
+        scenes.append(scene_from_dict(data, tmp_path / "scene.toml"))
+    return scenes, plate, frames, times
+
+
+def test_a_mesh_series_gives_the_histories_of_the_equivalent_vertex_trajectory(tmp_path):
+    (trajectory, series), *_ = series_scenes(tmp_path)
+    a, b = run(build_model(trajectory)), run(build_model(series))
+    assert len(a.model.network.areas[0].track.crossings) >= 6  # columns touch and release
+    np.testing.assert_allclose(b.history, a.history, rtol=1e-12, atol=0.0)
+
+
+def test_permuted_nodes_and_changed_connectivity_in_a_series_are_clear_errors(tmp_path):
+    from cases.errors import SceneError
+
+    (_, series), plate, frames, times = series_scenes(tmp_path)
+    faces = np.asarray(plate.faces)
+    permuted = frames.copy()
+    permuted[3] = permuted[3][np.random.default_rng(1).permutation(len(plate.vertices))]
+    write_pvd_with_pyvista(tmp_path, "plate", times, permuted, faces)
+    with pytest.raises(SceneError, match=r"body\[0\]\.mesh_series: .*plate\.pvd: frame 3 .*"):
+        build_model(series)
+    flipped = faces.copy()
+    flipped[5] = flipped[5][::-1]  # one face turned over in frame 1
+    write_pvd_with_pyvista(tmp_path, "plate", times[:2], frames[:2], [faces, flipped])
+    with pytest.raises(SceneError, match=r"frame 1 .*(face|connectivity)"):
+        build_model(series)
+    np.savez(tmp_path / "plate.npz", times=times, vertices=frames[:, ::-1])  # trajectory in the wrong node order
+    data = tank(pressure=2.0e5)
+    data["body"] = [{"name": "plate", "mesh": "plate.ply", "vertex_trajectory": "plate.npz"}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["plate"],
+                         "contact_tolerance": TOL}]
+    with pytest.raises(SceneError, match=r"body\[0\]\.vertex_trajectory: .*plate\.npz: .*frame 0"):
+        build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+
+
+def test_a_cavity_given_as_a_mesh_series_has_the_exact_volume_and_vent_area(tmp_path):
+    sphere = trimesh.creation.icosphere(subdivisions=2, radius=0.1)
+    times = np.array([0.0, 0.01, 0.02])
+    scale = np.array([1.0, 1.3, 0.9])
+    frames = sphere.vertices[None] * scale[:, None, None]
+    np.savez(tmp_path / "bag.npz", times=times, vertices=frames, faces=sphere.faces)
+    data = tank(pressure=1.5e5)
+    data["cavity"][0].pop("volume")
+    data["cavity"][0]["mesh_series"] = "bag.npz"
+    data["time"] = {"end": 0.02, "output_interval": 0.0005}
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_box": [-1, -1, 0.07, 1, 1, 1]}]
+    r = run(build_model(scene_from_dict(data, tmp_path / "scene.toml")))
+    t = r.column("time")
+    s = np.interp(t, times, scale)
+    v0 = sphere.volume
+    a0 = blockage.LeakageSurface.from_region(sphere, box=(np.array([-1, -1, 0.07]), np.ones(3))).total_area
+    np.testing.assert_allclose(r.column("tank.volume"), s ** 3 * v0, rtol=1e-12)
+    np.testing.assert_allclose(r.column("vent.area"), s ** 2 * a0, rtol=1e-12)

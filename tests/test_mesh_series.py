@@ -448,12 +448,11 @@ def test_series_volume_is_exact_between_frames():
     the derivative; for a cube scaled by s(t) linear between frames, V = s^3 (closed form)."""
     import trimesh
 
-    from cases.mesh_series import SeriesVolume
-    from cavity.volume import mesh_volume
+    from cavity.volume import SeriesVolume, mesh_volume
 
     x0, faces = sphere()
     s = MeshSeries(T, frames(x0), faces)
-    vol = SeriesVolume(s)
+    vol = SeriesVolume.of(s.times, s.vertices, s.triangles())
     for t in np.linspace(-1e-3, 8e-3, 37):
         assert vol(t) == pytest.approx(mesh_volume(s.at(t), faces), rel=1e-13)
         h = 1e-7
@@ -462,7 +461,8 @@ def test_series_volume_is_exact_between_frames():
     assert vol.rate(-1e-3) == 0.0 and vol.rate(T[-1]) == 0.0 and vol.breakpoints == tuple(T)
     cube = trimesh.creation.box()
     scale = np.array([1.0, 1.5, 1.2])
-    v = SeriesVolume(MeshSeries([0.0, 1.0, 3.0], cube.vertices[None] * scale[:, None, None], cube.faces))
+    c = MeshSeries([0.0, 1.0, 3.0], cube.vertices[None] * scale[:, None, None], cube.faces)
+    v = SeriesVolume.of(c.times, c.vertices, c.triangles())
     for t, sc, ds in ((0.5, 1.25, 0.5), (2.0, 1.35, -0.15)):
         assert v(t) == pytest.approx(sc ** 3, rel=1e-14) and v.rate(t) == pytest.approx(3 * sc * sc * ds, rel=1e-13)
 
