@@ -17,16 +17,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
-from exchange.network import Network, _labelled
+from exchange.network import Network
+
+from .scene_areas import GeometricAreas
+from .scene_seat import SeatModes
 
 __all__ = ["SceneNetwork", "BodyState", "GeometricArea", "BodyForces"]
-
-
-#: A dynamic body's area interval is re-derived from its displacement at a restart when the displacement lies
-#: outside the interval by more than this fraction of the track's range of θ.
-REDERIVE_SLACK = 1e-7
 
 
 @dataclass(frozen=True)
@@ -57,7 +54,7 @@ class GeometricArea:
 
 
 @dataclass
-class SceneNetwork(Network):
+class SceneNetwork(GeometricAreas, SeatModes, Network):
     """A Network plus bodies. ``areas``: per exchange a GeometricArea or None; ``body``: the dynamic body or None;
     ``pushed``: index of the cavity whose gauge pressure pushes the dynamic body; ``volume_slope(s)``: dV/ds of it;
     ``forces``: its spring and pressure area; ``contact``: its SeatContact (``held``: hard contact holds it now;
@@ -105,34 +102,6 @@ class SceneNetwork(Network):
                 y[self.body_offset] = self.rest_position(y)
         return y
 
-    def rest_position(self, y) -> float:
-        """Displacement s [m] at which a body at rest on a penalty or softened seat is in static equilibrium.
-
-        A body that starts at rest touching its seat while the other forces push it in (a preloaded poppet) starts
-        at the overclosure that carries them, so it does not ring on the contact spring; otherwise 0. The root of
-        the net force F(s) = F_applied(s) + m·g + F_seat(s, v=0) is bracketed by doubling steps into the seat and
-        found by Brent's method to round-off.
-        """
-        k, m, c = self.body_offset, self.body.motion, self.contact
-        sigma = c.held_sigma(0.0)  # the seat pushes the body along +sigma; 0: no closed node at s = 0
-        y = np.array(y, dtype=float)
-
-        def net(s):
-            y[k] = s
-            return self.applied_force(y, self.states(0.0, y)) + m.mass * m.gravity + c.force(s, 0.0)
-
-        if sigma == 0.0 or net(0.0) * sigma >= 0.0:
-            return 0.0
-        inside, step = 0.0, 1e-12 * c.size
-        while net(-sigma * step) * sigma < 0.0:
-            inside, step = step, 2.0 * step
-            if step > c.size:
-                raise ValueError(f"contact {c.name!r}: the seat cannot carry the forces pressing {c.body!r} into it "
-                                 f"within an overclosure of {c.size:.3g} m (stiffness too low?)")
-        s0 = float(brentq(net, -sigma * inside, -sigma * step, xtol=1e-15 * c.size, rtol=4 * np.finfo(float).eps))
-        net(s0)  # leaves the body state at s0
-        return s0
-
     @property
     def breakpoints(self) -> tuple:
         pts = list(super().breakpoints)
@@ -175,71 +144,11 @@ class SceneNetwork(Network):
             force += (states[f.cavity].pressure - self.ambient.pressure) * f.area
         return force - f.preload - f.stiffness * y[k]
 
-    def reaction(self, t, y) -> float:
-        """Hard contact held: the seat's reaction F_c [N] (> 0 compressive) balancing the other forces at rest."""
-        k, m = self.body_offset, self.body.motion
-        net = self.applied_force(y, self.states(self.input_time(t), y)) + m.mass * m.gravity
-        return -self.contact.held_sigma(y[k]) * net
-
-    def force_scale(self) -> float:
-        m, f = self.body.motion, self.forces
-        return max(f.preload + m.mass * abs(m.gravity), 1e-9)
-
-    def _seat_switch(self, t, y):
-        c, k = self.contact, self.body_offset
-        if self.held:
-            return self.reaction(t, y) / self.force_scale()
-        return -float(np.min(c.gaps(y[k])[c.reach])) / c.size
-
-    def _contact_events(self) -> list:
-        c, k = self.contact, self.body_offset
-        if c.hard:
-            out = [_labelled(lambda t, y: self._seat_switch(t, y), f"{c.name}:seat")]
-            if self.held:
-                return out
-        else:
-            out = []
-        for i, s_k in enumerate(c.thresholds()):
-            out.append(_labelled(lambda t, y, s_k=s_k: (y[k] - s_k) / c.size, f"{c.name}:kink-{i}"))
-        return out
-
-    def begin_segment(self, t0, t1, y0=None):
-        super().begin_segment(t0, t1, y0)
-        if y0 is not None and self.body is not None:
-            self._rederive_intervals(float(y0[self.body_offset]))
-
-    def _rederive_intervals(self, s: float) -> None:
-        """Make each area interval hold the body's displacement s (a crossing passed inside the step of a
-        turning point is caught here, at the restart, so a release is never missed)."""
-        for j, ga in enumerate(self.areas):
-            if ga is None or ga.by_time:
-                continue
-            below, above = ga.track.crossings[:self.intervals[j]], ga.track.crossings[self.intervals[j]:]
-            slack = REDERIVE_SLACK * ga.track.span  # a restart at a crossing event lies within the solver's error
-            if (len(below) and s < below[-1] - slack) or (len(above) and s > above[0] + slack):
-                self.intervals[j] = ga.track.interval(s)
-
-    def _turn_event(self) -> list:
-        """Turning points of the dynamic body (v = 0) end a segment: between them s is monotone, so each
-        crossing switch s − s_k can change sign only once."""
-        k, scale = self.body_offset + 1, max(abs(self.body.motion.initial_velocity), 1e-3)
-        return [_labelled(lambda t, y: y[k] / scale, f"{self.body.name}:turn")]
-
     def events(self):
         out = super().events()
         if self.body is not None and not self.held:
             out += self._turn_event()
-        for j, ga in enumerate(self.areas):
-            if ga is None or ga.by_time:
-                continue
-            i, crossings, name = self.intervals[j], ga.track.crossings, self.exchanges[j].name
-            scale = max(ga.track.total_area ** 0.5, 1e-6)
-            k = self.body_offset
-            if i > 0:
-                out.append(_directed(lambda t, y, c=crossings[i - 1]: (y[k] - c) / scale, f"{name}:contact-{i}-down",
-                                     -1.0))
-            if i < len(crossings):
-                out.append(_directed(lambda t, y, c=crossings[i]: (y[k] - c) / scale, f"{name}:contact-{i}-up", 1.0))
+        out += self._area_events()
         if self.contact is not None:
             out += self._contact_events()
         return out
@@ -259,65 +168,6 @@ class SceneNetwork(Network):
             return y
         return super().on_event(t, y, label)
 
-    def _seat_event(self, t, y):
-        """Hard contact: lift-off (held -> free) or impact (free -> on the seat with v = 0, held if the reaction is
-        compressive; s is set to the exact touching position, as kinematic contact allows no penetration)."""
-        k, c = self.body_offset, self.contact
-        if self.held:
-            self.held = False
-            self.contact_log.append((t, "lift-off", 0.0, self._pressure(t, y)))
-            return y
-        reach = np.flatnonzero(c.reach)
-        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
-        approach = -c.sigma[i] * y[k + 1]
-        if approach <= 0.0:  # not approaching: the gap has just opened
-            return y
-        y = np.array(y, dtype=float)
-        y[k], y[k + 1] = -c.g0[i] / c.sigma[i], 0.0
-        self.held = self.reaction(t, y) > 0.0
-        self.contact_log.append((t, "impact", float(approach), self._pressure(t, y)))
-        return y
-
-    def _pressure(self, t, y) -> float:
-        f = self.forces.cavity
-        return float(self.states(self.input_time(t), y)[f].pressure) if f is not None else float("nan")
-
-    def _log_touch(self, t, y):
-        """Penalty/softened contact: record first touch and full separation (the kinks where g_min = 0)."""
-        k, c = self.body_offset, self.contact
-        reach = np.flatnonzero(c.reach)
-        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
-        if abs(c.gaps(y[k])[i]) <= 1e-9 * c.size:
-            approach = float(-c.sigma[i] * y[k + 1])
-            self.contact_log.append((t, "touch" if approach > 0 else "separate", approach, self._pressure(t, y)))
-
-    def lowered_geometry(self):
-        """The geometry as arrays for the compiled path (:func:`exchange.compiled.lower`): per blocked exchange its
-        area steps (crossing times, area after each) and scale table, per wrapped cavity its volume spline of
-        time; or why it cannot be lowered (a dynamic body, a moving surface, a pop vent on a blocked area)."""
-        if self.body is not None or self.contact is not None:
-            return "a dynamic body"
-        areas, volumes = {}, {}
-        for j, ga in enumerate(self.areas):
-            if ga is None:
-                continue
-            track, act = ga.track, self.exchanges[j].activation
-            if track.weights_at is not None:
-                return f"exchange {self.exchanges[j].name}: a leakage surface on a vertex trajectory"
-            if act is not None and act.pop_pressure is not None:
-                return f"exchange {self.exchanges[j].name}: a pop vent on a blocked leakage area"
-            scale = track.scale if track.effective_area is None else None
-            areas[j] = (np.asarray(track.crossings, dtype=float), track.areas, scale)
-        for cav in self.cavities:
-            vol = cav.volume
-            if hasattr(vol, "spline"):
-                volumes[cav.name] = (vol.spline.x, vol.spline.c)
-        return {"areas": areas, "volumes": volumes}
-
-    def wrap_mode(self, mode):
-        """A plain network's snapshot (from the compiled path) as this network's."""
-        return mode, tuple(self.intervals), False
-
     def snapshot(self):
         return super().snapshot(), tuple(self.intervals), self.held
 
@@ -336,13 +186,6 @@ class SceneNetwork(Network):
         """Energy the dynamic body has given up since t = 0: ½m(v0² − v²) + m·g·s [J]."""
         m, k = self.body.motion, self.body_offset
         return 0.5 * m.mass * (m.initial_velocity ** 2 - y[k + 1] ** 2) + m.mass * m.gravity * y[k]
-
-
-def _directed(g, label, direction):
-    """A switch function that can only cross one way (s leaves its interval through that end)."""
-    g = _labelled(g, label)
-    g.direction = direction
-    return g
 
 
 def first_contact(track):

@@ -1,0 +1,103 @@
+"""The dynamic body against its seat: rest position, reaction, the seat and kink switches, impacts and lift-offs
+(a mixin of :class:`cases.scene_network.SceneNetwork`; the contact laws are :mod:`cases.contact`)."""
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import brentq
+
+from exchange.network import _labelled
+
+__all__ = ["SeatModes"]
+
+
+class SeatModes:
+    """Needs ``body``, ``contact``, ``held``, ``contact_log``, ``forces``, ``body_offset``, ``applied_force``,
+    ``states``, ``input_time``."""
+
+    def rest_position(self, y) -> float:
+        """Displacement s [m] at which a body at rest on a penalty or softened seat is in static equilibrium.
+
+        A body that starts at rest touching its seat while the other forces push it in (a preloaded poppet) starts
+        at the overclosure that carries them, so it does not ring on the contact spring; otherwise 0. The root of
+        the net force F(s) = F_applied(s) + m·g + F_seat(s, v=0) is bracketed by doubling steps into the seat and
+        found by Brent's method to round-off.
+        """
+        k, m, c = self.body_offset, self.body.motion, self.contact
+        sigma = c.held_sigma(0.0)  # the seat pushes the body along +sigma; 0: no closed node at s = 0
+        y = np.array(y, dtype=float)
+
+        def net(s):
+            y[k] = s
+            return self.applied_force(y, self.states(0.0, y)) + m.mass * m.gravity + c.force(s, 0.0)
+
+        if sigma == 0.0 or net(0.0) * sigma >= 0.0:
+            return 0.0
+        inside, step = 0.0, 1e-12 * c.size
+        while net(-sigma * step) * sigma < 0.0:
+            inside, step = step, 2.0 * step
+            if step > c.size:
+                raise ValueError(f"contact {c.name!r}: the seat cannot carry the forces pressing {c.body!r} into it "
+                                 f"within an overclosure of {c.size:.3g} m (stiffness too low?)")
+        s0 = float(brentq(net, -sigma * inside, -sigma * step, xtol=1e-15 * c.size, rtol=4 * np.finfo(float).eps))
+        net(s0)  # leaves the body state at s0
+        return s0
+
+    def reaction(self, t, y) -> float:
+        """Hard contact held: the seat's reaction F_c [N] (> 0 compressive) balancing the other forces at rest."""
+        k, m = self.body_offset, self.body.motion
+        net = self.applied_force(y, self.states(self.input_time(t), y)) + m.mass * m.gravity
+        return -self.contact.held_sigma(y[k]) * net
+
+    def force_scale(self) -> float:
+        m, f = self.body.motion, self.forces
+        return max(f.preload + m.mass * abs(m.gravity), 1e-9)
+
+    def _seat_switch(self, t, y):
+        c, k = self.contact, self.body_offset
+        if self.held:
+            return self.reaction(t, y) / self.force_scale()
+        return -float(np.min(c.gaps(y[k])[c.reach])) / c.size
+
+    def _contact_events(self) -> list:
+        c, k = self.contact, self.body_offset
+        if c.hard:
+            out = [_labelled(lambda t, y: self._seat_switch(t, y), f"{c.name}:seat")]
+            if self.held:
+                return out
+        else:
+            out = []
+        for i, s_k in enumerate(c.thresholds()):
+            out.append(_labelled(lambda t, y, s_k=s_k: (y[k] - s_k) / c.size, f"{c.name}:kink-{i}"))
+        return out
+
+    def _seat_event(self, t, y):
+        """Hard contact: lift-off (held -> free) or impact (free -> on the seat with v = 0, held if the reaction is
+        compressive; s is set to the exact touching position, as kinematic contact allows no penetration)."""
+        k, c = self.body_offset, self.contact
+        if self.held:
+            self.held = False
+            self.contact_log.append((t, "lift-off", 0.0, self._pressure(t, y)))
+            return y
+        reach = np.flatnonzero(c.reach)
+        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
+        approach = -c.sigma[i] * y[k + 1]
+        if approach <= 0.0:  # not approaching: the gap has just opened
+            return y
+        y = np.array(y, dtype=float)
+        y[k], y[k + 1] = -c.g0[i] / c.sigma[i], 0.0
+        self.held = self.reaction(t, y) > 0.0
+        self.contact_log.append((t, "impact", float(approach), self._pressure(t, y)))
+        return y
+
+    def _pressure(self, t, y) -> float:
+        f = self.forces.cavity
+        return float(self.states(self.input_time(t), y)[f].pressure) if f is not None else float("nan")
+
+    def _log_touch(self, t, y):
+        """Penalty/softened contact: record first touch and full separation (the kinks where g_min = 0)."""
+        k, c = self.body_offset, self.contact
+        reach = np.flatnonzero(c.reach)
+        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
+        if abs(c.gaps(y[k])[i]) <= 1e-9 * c.size:
+            approach = float(-c.sigma[i] * y[k + 1])
+            self.contact_log.append((t, "touch" if approach > 0 else "separate", approach, self._pressure(t, y)))
