@@ -2,6 +2,8 @@
 certified crossings and the incremental area track."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 import blockage
@@ -9,6 +11,7 @@ import blockage
 from .area_track import AreaTrack, node_weights
 from .crossings import RESOLUTION, certified_crossings
 from .errors import SceneError
+from .mesh_series import SUFFIXES, read_mesh_series
 from .gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
 from .scene_network import GeometricArea
 
@@ -23,11 +26,16 @@ GROUP_WINDOW = 0.0
 
 
 def leak_surface(scene, j, cavity_meshes):
-    """(LeakageSurface, the cavity spec it was cut from or None) of exchange j."""
+    """(LeakageSurface, the cavity spec it was cut from or None, its own (times, vertices) or None) of exchange j;
+    a leakage_surface given as a mesh series (.pvd, .xdmf, .npz) moves on its own."""
     e, where = scene.exchange[j], f"exchange[{j}]"
+    if e.leakage_surface and Path(e.leakage_surface).suffix.lower() in SUFFIXES:
+        series = read_mesh_series(scene.base / e.leakage_surface, where=f"{where}.leakage_surface",
+                                  scene_path=scene.path)
+        return blockage.LeakageSurface(series.vertices[0], series.faces), None, (series.times, series.vertices)
     if e.leakage_surface:
         try:
-            return blockage.LeakageSurface.read(scene.base / e.leakage_surface), None
+            return blockage.LeakageSurface.read(scene.base / e.leakage_surface), None, None
         except Exception as exc:
             raise SceneError(scene.path, f"{where}.leakage_surface", f"cannot read {e.leakage_surface!r}: {exc}") \
                 from None
@@ -37,7 +45,7 @@ def leak_surface(scene, j, cavity_meshes):
         surface = blockage.LeakageSurface.from_region(mesh, box=(lo, hi))
     except ValueError as exc:
         raise SceneError(scene.path, f"{where}.leakage_box", str(exc)) from None
-    return surface, next(c for c in scene.cavity if c.name == e.from_)
+    return surface, next(c for c in scene.cavity if c.name == e.from_), None
 
 
 def placement_of(driver, name, open_depth=0.0):
@@ -123,8 +131,9 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
         weights = node_area if node_area is not None else np.ones(len(x0))
         total = float(weights.sum())
     else:
-        surface, cavity = leak_surface(scene, j, cavity_meshes)
-        path = _node_path(scene, surface, cavity, series or {})
+        surface, cavity, own = leak_surface(scene, j, cavity_meshes)
+        path = NodePath(surface.vertices, trajectory=own) if own is not None else \
+            _node_path(scene, surface, cavity, series or {})
         weights = node_weights(surface.face_areas, surface.faces, surface.face_sizes, len(surface.vertices))
         total = surface.total_area
         options.update(scale=path.scale, weights_at=_weights_at(surface, path) if path.trajectory else None)
@@ -132,7 +141,7 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
     placements = [placement_of(driver, n, depth) for n in e.blocked_by]
     if e.self_contact:
         placements.append(SelfPlacement(blockage.Blocker(cavity_meshes[e.from_]), surface.source_vertices,
-                                        path.scale))
+                                        path.scale, (series or {}).get(e.from_)))
     size = float(np.linalg.norm(np.ptp(path.x0, axis=0)))
     field = GapField(path, placements, tol, max(CUTOFF_TOLERANCES * tol, CUTOFF_EXTENT * size),
                      surface.edges if e.edge_contact else None)

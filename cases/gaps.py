@@ -194,18 +194,20 @@ class DeformingPlacement:
 @dataclass
 class SelfPlacement:
     """The cavity's own surface as a blocker of a leakage surface cut from it: ``blocker`` built on the cavity
-    mesh, ``ids`` (n,) the mesh vertex of each leakage node (faces holding it are ignored), scaled with the
-    mesh by ``scale`` (a Table or None) about the origin."""
+    mesh, ``ids`` (n,) the mesh vertex of each leakage node (faces holding it are ignored); the mesh scales by
+    ``scale`` (a Table) about the origin, or follows ``trajectory`` (times, vertices) of a mesh series."""
 
     blocker: object
     ids: np.ndarray
     scale: object = None
-
-    def _s(self, thetas):
-        return table_values(self.scale, thetas) if self.scale is not None else np.ones(len(thetas))
+    trajectory: tuple | None = None
 
     def signed(self, thetas, points, cutoff, nodes=None) -> np.ndarray:
-        s = self._s(thetas)
+        if self.trajectory is not None:
+            moving = DeformingPlacement(self.blocker, self.trajectory)
+            return moving._per_theta(thetas, lambda sel: np.minimum(self.blocker.distances(
+                points[sel], cutoff, None, self.ids[nodes[sel]]).distances, cutoff))
+        s = table_values(self.scale, thetas) if self.scale is not None else np.ones(len(thetas))
         d = np.empty(len(points))
         for value in np.unique(s):  # one query per scale (mostly one)
             sel = np.flatnonzero(s == value)
@@ -217,6 +219,9 @@ class SelfPlacement:
         return np.full(len(starts), np.inf)  # edges of the own surface touch it everywhere: not a contact
 
     def speeds(self, a, b, path: NodePath, nodes) -> np.ndarray:
+        """Both the node and the surface move with the mesh: twice its fastest point."""
+        if self.trajectory is not None:
+            return 2.0 * DeformingPlacement(self.blocker, self.trajectory).speeds(a, b, NodePath(path.x0), nodes)
         if self.scale is None:
             return np.zeros(len(nodes))
         size = float(np.max(np.linalg.norm(self.blocker.vertices, axis=1)))

@@ -30,6 +30,9 @@ CASES = {
     "airbag_impactor": "airbag_impactor.toml",
     "airbag_impactor_dynamic": "airbag_impactor_dynamic.toml",
     "seal_vent": "seal_vent.toml",
+    "seal_vent_nodes": "seal_vent_nodes.toml",
+    "vent_bar_edge": "vent_bar_edge.toml",
+    "bag_unfold": "bag_unfold.toml",
     "relief_valve": "relief_valve.toml",
     "relief_valve_undamped": "relief_valve_undamped.toml",
 }

@@ -157,8 +157,9 @@ class ExchangeSpec:
     amplitude: object = key("activation: area multiplier, a number or CSV (time [s], [-])", default=None)
     delta_area: bool = key("activation: current leakage area minus the area at activation (Abaqus DELTA "
                            "LEAKAGE AREA)", default=False)
-    leakage_surface: str = key("leakage surface mesh file (triangles or quads, metres); the area is then its "
-                               "unblocked area", default="")
+    leakage_surface: str = key("leakage surface mesh file (triangles or quads, metres), or a mesh series "
+                               "(.pvd, .xdmf, .npz) moving on its own; the area is then its unblocked area",
+                               default="")
     leakage_box: tuple = key("or: the faces of the `from` cavity's mesh inside this box: xmin, ymin, zmin, "
                              "xmax, ymax, zmax", "m", default=())
     blocked_by: tuple = key("bodies that block the leakage surface", default=())

@@ -249,3 +249,48 @@ def test_a_cavity_given_as_a_mesh_series_has_the_exact_volume_and_vent_area(tmp_
     a0 = blockage.LeakageSurface.from_region(sphere, box=(np.array([-1, -1, 0.07]), np.ones(3))).total_area
     np.testing.assert_allclose(r.column("tank.volume"), s ** 3 * v0, rtol=1e-12)
     np.testing.assert_allclose(r.column("vent.area"), s ** 2 * a0, rtol=1e-12)
+
+
+def test_a_leakage_surface_series_moving_on_its_own_meets_a_fixed_plate_as_a_moving_plate_meets_it(tmp_path):
+    grid_vent(tmp_path / "vent.obj")
+    tilted_plate().export(tmp_path / "plate.ply")
+    vent = blockage.LeakageSurface.read(tmp_path / "vent.obj")
+    times = np.array([0.0, 0.01, 0.02, 0.03])
+    s = np.array([0.0, 1.2e-3, 1.2e-3, 0.0])
+    frames = vent.vertices[None] + s[:, None, None] * np.array([0.0, 0.0, 1.0])
+    quads = np.asarray(vent.faces)
+    np.savez(tmp_path / "vent_up.npz", times=times, vertices=frames, faces=quads)
+    (tmp_path / "down.csv").write_text("t,s\n" + "".join(f"{float(t)!r},{float(x)!r}\n" for t, x in zip(times, s)))
+    tracks = []
+    for body, leak in (({"displacement_table": "down.csv"}, "vent.obj"), ({}, "vent_up.npz")):
+        data = tank(pressure=2.0e5)
+        data["time"] = {"end": 0.03, "output_interval": 0.001}
+        data["body"] = [{"name": "plate", "mesh": "plate.ply", "axis": [0, 0, -1], **body}]
+        data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": leak, "blocked_by": ["plate"],
+                             "contact_tolerance": TOL}]
+        tracks.append(build_model(scene_from_dict(data, tmp_path / "scene.toml")).network.areas[0].track)
+    moving_plate, moving_vent = tracks
+    assert len(moving_vent.crossings) == len(moving_plate.crossings) >= 6
+    np.testing.assert_allclose(moving_vent.crossings, moving_plate.crossings, rtol=1e-9)
+    np.testing.assert_allclose(moving_vent.areas, moving_plate.areas, rtol=1e-12)
+
+
+def test_library_cases_of_node_based_edge_and_self_contact_blockage():
+    models = {n: build_model(load_scene(ROOT / "cases" / f"{n}.toml"))
+              for n in ("seal_vent", "seal_vent_nodes", "vent_bar_edge", "bag_unfold")}
+    elements, nodes = (models[n].network.areas[0].track for n in ("seal_vent", "seal_vent_nodes"))
+    np.testing.assert_allclose(nodes.crossings, elements.crossings, rtol=1e-12)  # node shares = element areas
+    np.testing.assert_allclose(nodes.areas, elements.areas, rtol=1e-12)
+    bar = models["vent_bar_edge"]
+    surface, _ = bar.geometry["surfaces"][0]
+    down = bar.network.areas[0].track.active_at(0.008)
+    np.testing.assert_array_equal(down, np.isclose(surface.vertices[:, 0], 0.0) | np.isclose(surface.vertices[:, 0],
+                                                                                               0.01))
+    body, blocker = bar.geometry["bodies"]["bar"]
+    assert not blockage.evaluate(surface, [(blocker, body.transform(0.008))], 1e-3).active_nodes.any()
+    assert np.array_equal(blockage.evaluate(surface, [(blocker, body.transform(0.008))], 1e-3,
+                                            edge_contact=True).active_nodes, down)
+    bag = models["bag_unfold"].network.areas[0].track
+    assert bag.actives[0] == len(bag.source.initial) and bag.areas[0] == 0.0  # the flat bag's top sheet covers it
+    assert len(bag.crossings) == 1 and bag.crossings[0] == pytest.approx(0.005 + 0.0025 / 3.0, rel=1e-12)
+    assert bag(0.01) == pytest.approx(2.0e-4, rel=1e-15)
