@@ -197,17 +197,20 @@ def signed_distances(blocker, points, cutoff=np.inf, open_depth=0.0) -> np.ndarr
     out = np.full(len(points), float(cutoff))
     if not len(blocker.faces) or not len(points):
         return out
-    sides = sides_of(blocker)
     found = blocker.distances(points, cutoff=cutoff)
     near = np.flatnonzero(np.isfinite(found.distances))
     out[near] = found.distances[near]
+    lo, hi = blocker.vertices.min(axis=0), blocker.vertices.max(axis=0)
+    reach = 1e-9 * float(np.max(hi - lo)) + float(open_depth)
+    if not near.size and not np.any(np.all((points >= lo - reach) & (points <= hi + reach), axis=1)):
+        return out  # nothing near nor inside: the sides are not needed (their normals cost O(faces))
+    sides = sides_of(blocker)
     depth = np.inf if sides.closed else float(open_depth)
     if not depth > 0.0:
         return out
     if near.size:  # the closest point is known: the side test needs nothing more
         behind = sides.behind(points[near], found.closest_points[near], found.faces[near])
         out[near[behind & (found.distances[near] <= depth)]] *= -1.0
-    lo, hi = blocker.vertices.min(axis=0), blocker.vertices.max(axis=0)
     pad = 1e-9 * float(np.max(hi - lo)) + (0.0 if sides.closed else depth)
     far = np.flatnonzero(~np.isfinite(found.distances) & np.all((points >= lo - pad) & (points <= hi + pad), axis=1))
     if far.size and depth > cutoff:  # beyond the cutoff but inside the box: search without it

@@ -27,7 +27,8 @@ from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
 
 LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
-             "airbag_vented", "airbag_impactor", "seal_vent"]  # prescribed bodies: area steps, volume splines
+             "airbag_vented", "airbag_impactor", "seal_vent", "seal_vent_nodes", "vent_bar_edge"]  # prescribed
+# bodies: area steps and volume splines
 
 
 def model_of(name):
