@@ -207,12 +207,11 @@ def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dic
             inside = starts <= t_end
             areas, times, actives = track.areas[inside], starts[inside], np.array(track.actives)[inside]
         else:
-            i0 = int(np.searchsorted(track.crossings, 0.0, side="right"))
-            times, idx = [0.0], [i0]
-            for t, label in traj.events:
-                if label.startswith(f"{name}:contact-"):
-                    idx.append(idx[-1] + (1 if label.endswith("-up") else -1))
-                    times.append(t)
+            times, idx = [], []  # the interval each segment used (a switch or a re-derivation changed it)
+            for seg, mode in zip(traj.segments, traj.modes):
+                if mode is not None and (not idx or mode[1][j] != idx[-1]):
+                    times.append(float(seg.t_min))
+                    idx.append(mode[1][j])
             areas, actives = track.areas[idx], np.array(track.actives)[idx]
             times = np.array(times)
         k = int(np.argmin(areas))

@@ -48,18 +48,18 @@ class GeometricAreas:
             scale = max(ga.track.total_area ** 0.5, 1e-6)
             k = self.body_offset
             if i > 0:
-                out.append(_directed(lambda t, y, c=crossings[i - 1]: (y[k] - c) / scale, f"{name}:contact-{i}-down",
+                out.append(_directed(lambda t, y, c=crossings[i - 1]: (y[k] - c) / scale, f"{name}:contact-down",
                                      -1.0))
             if i < len(crossings):
-                out.append(_directed(lambda t, y, c=crossings[i]: (y[k] - c) / scale, f"{name}:contact-{i}-up", 1.0))
+                out.append(_directed(lambda t, y, c=crossings[i]: (y[k] - c) / scale, f"{name}:contact-up", 1.0))
         return out
 
     def lowered_geometry(self):
         """The geometry as arrays for the compiled path (:func:`exchange.compiled.lower`): per blocked exchange its
         area steps (crossing times, area after each) and scale table, per wrapped cavity its volume spline of
         time; or why it cannot be lowered (a dynamic body, a moving surface, a pop vent on a blocked area)."""
-        if self.body is not None or self.contact is not None:
-            return "a dynamic body"
+        if self.contact is not None:
+            return "a dynamic body in contact with a seat"
         areas, volumes = {}, {}
         for j, ga in enumerate(self.areas):
             if ga is None:
@@ -70,16 +70,30 @@ class GeometricAreas:
             if act is not None and act.pop_pressure is not None:
                 return f"exchange {self.exchanges[j].name}: a pop vent on a blocked leakage area"
             scale = track.scale if track.effective_area is None else None
-            areas[j] = (np.asarray(track.crossings, dtype=float), track.areas, scale)
-        for cav in self.cavities:
+            areas[j] = (np.asarray(track.crossings, dtype=float), track.areas, scale, not ga.by_time,
+                        max(track.total_area ** 0.5, 1e-6))
+        for i, cav in enumerate(self.cavities):
             vol = cav.volume
             if hasattr(vol, "spline"):
-                volumes[cav.name] = (vol.spline.x, vol.spline.c)
-        return {"areas": areas, "volumes": volumes}
+                volumes[cav.name] = (vol.spline.x, vol.spline.c, self.body is not None and i == self.pushed)
+        return {"areas": areas, "volumes": volumes, "body": self._lowered_body()}
 
-    def wrap_mode(self, mode):
+    def _lowered_body(self):
+        """The dynamic body's parameters for :func:`exchange.compiled_rhs.body_rhs`, or None."""
+        if self.body is None:
+            return None
+        m, f = self.body.motion, self.forces
+        span = max([ga.track.span for ga in self.areas if ga is not None] + [1.0])
+        return (float(self.body_offset), m.mass, m.gravity, -1 if self.pushed is None else self.pushed,
+                -1 if f.cavity is None else f.cavity, f.area, f.stiffness, f.preload,
+                max(abs(m.initial_velocity), 1e-3), REDERIVE_SLACK * span)
+
+    def wrap_mode(self, mode, intervals=None):
         """A plain network's snapshot (from the compiled path) as this network's."""
-        return mode, tuple(self.intervals), False
+        if intervals is None:
+            return mode, tuple(self.intervals), False
+        by_s = [ga is not None and not ga.by_time for ga in self.areas] if self.areas else [False] * len(intervals)
+        return mode, tuple(int(i) if s else None for i, s in zip(intervals, by_s)), False
 
 
 def _directed(g, label, direction):

@@ -52,6 +52,7 @@ class CompiledNetwork:
         model, net = self.model, self.network
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
         eq, op, hold = model[20], model[21], model[22]
+        model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
         for j, ex in enumerate(net.exchanges):
             eq[j] = net.equalised[j]
             op[j] = 0 if self.model[12][j, 6] == 1 and not net.popped[j] else 1
@@ -73,12 +74,13 @@ class CompiledNetwork:
         ne, code = len(self.network.exchanges), int(row[4])
         popped = tuple(bool(p) for p in row[5:5 + ne])
         holding = tuple(None if math.isnan(h) else h for h in row[5 + ne:5 + 2 * ne])
-        key = (code, popped, holding)
+        intervals = tuple(int(i) for i in row[5 + 2 * ne:5 + 3 * ne])
+        key = (code, popped, holding, intervals)
         if key not in self._modes:
             areas = tuple(ex.area if p else None for ex, p in zip(self.network.exchanges, popped))
             mode = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
             wrap = getattr(self.network, "wrap_mode", None)
-            self._modes[key] = wrap(mode) if wrap is not None else mode
+            self._modes[key] = wrap(mode, intervals) if wrap is not None else mode
         return self._modes[key]
 
     def segment_mode(self, code) -> tuple:
@@ -117,8 +119,9 @@ def unsupported_reason(net) -> str | None:
 
 
 def _geometry(net) -> dict:
-    """The network's lowered geometry (``lowered_geometry()``: {"areas": {j: (steps x, y, scale table or None)},
-    "volumes": {cavity name: (knots, coefficients (4, pieces))}}), or empty."""
+    """The network's lowered geometry (``lowered_geometry()``: {"areas": {j: (steps x, y, scale table or None,
+    by displacement)}, "volumes": {cavity name: (knots, coefficients (4, pieces), by displacement)}, "body": the
+    dynamic body's parameters or None}), or empty."""
     lowered = getattr(net, "lowered_geometry", None)
     return lowered() if lowered is not None else {"areas": {}, "volumes": {}}
 
@@ -162,16 +165,17 @@ def _cavities(net, tables):
     splines = _geometry(net).get("volumes", {})
     for cav, k, c in zip(net.cavities, net.offsets, net._ledger):
         vol = cav.volume
-        kind = 3 if cav.name in splines else 0 if isinstance(vol, FixedVolume) else 1 \
-            if isinstance(vol, TableVolume) else 2
+        kind = (4 if splines[cav.name][2] else 3) if cav.name in splines else 0 if isinstance(vol, FixedVolume) \
+            else 1 if isinstance(vol, TableVolume) else 2
         tab = tables.add(vol.table) if kind == 1 else tables.add(vol.scale) if kind == 2 else \
-            _spline_entry(tables, *splines[cav.name]) if kind == 3 else -1
+            _spline_entry(tables, *splines[cav.name][:2]) if kind >= 3 else -1
         size = vol.volume if kind == 0 else vol.mesh_volume if kind == 2 else 0.0
         hA = cav.heat_transfer_coefficient * cav.heat_transfer_area
-        ci.append((k, ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses)))
+        ci.append((k, ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses),
+                   int(_geometry(net)["body"][0]) if kind == 4 else -1))
         cf.append((cav.initial_temperature, cav.added_volume, cav.minimum_volume, hA, cav.ambient_temperature,
                    size))
-    return np.array(ci, dtype=np.int64), np.array(cf, dtype=float)
+    return np.array(ci, dtype=np.int64).reshape(-1, 7), np.array(cf, dtype=float)
 
 
 def _inflators(net, tables, ns, nr):
@@ -204,22 +208,24 @@ def _exchanges(net, tables):
         window = act is not None
         pop = window and act.pop_pressure is not None
         cd, p1, p2 = _law_parameters(ex.law)
-        steps, scale = -1, -1
+        steps, scale, kind, switch_scale = -1, -1, 0, 1.0
         if j in geometric:
-            x, y, scale_table = geometric[j]
+            x, y, scale_table, by_displacement, switch_scale = geometric[j]
             steps = tables.add_arrays(np.concatenate([[-np.inf], x]), y)
             scale = tables.add(scale_table) if scale_table is not None else -1
+            kind = 2 if by_displacement else 1
         ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
                    int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__], steps,
-                   scale))
+                   scale, kind))
         ef.append((ex.area, cd, act.open_time if window else 0.0, act.close_time if window else math.inf,
-                   act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2))
-    return np.array(ei, dtype=np.int64).reshape(-1, 10), np.array(ef, dtype=float).reshape(-1, 8)
+                   act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2, switch_scale))
+    return np.array(ei, dtype=np.int64).reshape(-1, 11), np.array(ef, dtype=float).reshape(-1, 9)
 
 
 def _switches(net):
-    """Switch kinds (0 choke, 1 one-way reversal, 2/3 equalise/release, 4 pop, 5 pop-drop, 6 pop-hold), their
-    exchanges and labels, in the order of :meth:`Network.events` (each watched only in its discrete state)."""
+    """Switch kinds (0 choke, 1 one-way reversal, 2/3 equalise/release, 4 pop, 5 pop-drop, 6 pop-hold, 8/9 the
+    dynamic body's displacement reaching the crossing above/below its area interval, 10 its turning point),
+    their exchanges and labels, in the order of :meth:`Network.events` (each watched only in its discrete state)."""
     kinds, js, labels = [], [], []
 
     def add(kind, j, what):
@@ -239,7 +245,24 @@ def _switches(net):
             add(4, j, "pop")
             add(5, j, "pop-drop")
             add(6, j, "pop-hold")
+    geometry = _geometry(net)
+    if geometry.get("body") is not None:  # the dynamic body's turning point, and its area crossings
+        kinds.append(10)
+        js.append(0)
+        labels.append(f"{net.body.name}:turn")
+        for j, area in geometry["areas"].items():
+            if area[3]:
+                add(9, j, "contact-down")
+                add(8, j, "contact-up")
     return np.array(kinds, dtype=np.int64), np.array(js, dtype=np.int64), labels
+
+
+def _body(net) -> np.ndarray:
+    """The dynamic body for :func:`exchange.compiled_rhs.body_rhs`: offset, mass, gravity, pushed cavity, pressure
+    cavity, pressure area, stiffness, preload, turning-point speed scale, re-derivation slack [m]; offset −1:
+    none."""
+    body = _geometry(net).get("body")
+    return np.array(body if body is not None else (-1.0,) + (0.0,) * 9, dtype=float)
 
 
 def lower(net) -> CompiledNetwork | None:
@@ -263,6 +286,6 @@ def lower(net) -> CompiledNetwork | None:
              np.asarray(gas.molar_masses, dtype=float), tx, ty, ti, ci, cf, ii, ifl, irows, ei, ef, amb,
              int(net.ledger_offset), T0.copy(), np.zeros((nc, 9 + ns)), np.zeros(ns), np.zeros(7),
              np.zeros(len(net.exchanges), dtype=np.int64), np.ones(len(net.exchanges), dtype=np.int64),
-             np.full(len(net.exchanges), np.nan))
+             np.full(len(net.exchanges), np.nan), np.zeros(len(net.exchanges), dtype=np.int64), _body(net))
     kinds, js, labels = _switches(net)
     return CompiledNetwork(model, kinds, js, labels, T0, net)

@@ -69,13 +69,14 @@ def dense_state(recs, segs, i, t, y):
 
 
 @njit(cache=True)
-def history_rows(M, recs, segs, eqs, ops, times):
+def history_rows(M, recs, segs, eqs, ops, ivs, times):
     """History rows at ``times`` [s] (sorted or not) from a compiled run's records.
 
     ``M``: the model tuple of :class:`exchange.compiled.CompiledNetwork`; ``recs``, ``segs``: the step records
     and segment table of :func:`exchange.compiled_solver.solve`; ``eqs`` (segments, exchanges) int: 1 where an
     exchange is equalised (held closed) during the segment; ``ops`` (segments, exchanges) int: 0 where a pop vent
-    has not popped during the segment (:func:`opened_per_segment`). Returns (ok, rows (len(times), width)); ok is False
+    has not popped during the segment (:func:`opened_per_segment`); ``ivs`` (segments, exchanges) int: the
+    dynamic body's area interval (:func:`intervals_per_segment`). Returns (ok, rows (len(times), width)); ok is False
     when a temperature solve failed (the caller then builds the rows in Python). The model's scratch is not
     touched: the Newton first guesses start at the cavities' initial temperatures.
     """
@@ -83,6 +84,7 @@ def history_rows(M, recs, segs, eqs, ops, times):
     nc, ne = ci.shape[0], ei.shape[0]
     n_y = (recs.shape[1] - RECORD) // 8
     y, guess, eq_now, op_now = np.empty(n_y), cf[:, 0].copy(), np.empty(ne, np.int64), np.empty(ne, np.int64)
+    iv_now = np.empty(ne, np.int64)
     st_, n_, row_ = np.empty_like(st), np.empty_like(n), np.empty_like(row)
     out = np.empty((times.size, 1 + 4 * nc + 2 * ne))
     ok = True
@@ -92,6 +94,7 @@ def history_rows(M, recs, segs, eqs, ops, times):
         dense_state(recs, segs, i, t, y)
         eq_now[:] = eqs[i]
         op_now[:] = ops[i]
+        iv_now[:] = ivs[i]
         ok &= states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t, y, guess, st_, n_, row_)
         out[r, 0] = t
         for c in range(nc):
@@ -99,18 +102,33 @@ def history_rows(M, recs, segs, eqs, ops, times):
             out[r, 3 + 4 * c], out[r, 4 + 4 * c] = st_[c, MASS], st_[c, V]
         base = 1 + 4 * nc
         for j in range(ne):
-            out[r, base + 2 * j] = exchange_flow(ei, ef, eq_now, op_now, tx, ty, ti, st_, amb, j, t)
-            out[r, base + 2 * j + 1] = exchange_area(ei, ef, op_now, tx, ty, ti, j, t)
+            out[r, base + 2 * j] = exchange_flow(ei, ef, eq_now, op_now, iv_now, tx, ty, ti, st_, amb, j, t)
+            out[r, base + 2 * j + 1] = exchange_area(ei, ef, op_now, iv_now, tx, ty, ti, j, t)
     return ok, out
+
+
+def _network_mode(mode):
+    """The plain network's part of a segment's mode (a scene network wraps it: (mode, intervals, held))."""
+    return mode[0] if mode is not None and len(mode) == 3 else mode
 
 
 def equalised_per_segment(modes, n_exchanges: int) -> np.ndarray:
     """(segments, exchanges) int: the equalised flags (``mode[3]``) of each segment's discrete state."""
     eqs = np.zeros((len(modes), n_exchanges), dtype=np.int64)
     for i, mode in enumerate(modes):
+        mode = _network_mode(mode)
         if mode is not None and len(mode) > 3:
             eqs[i] = mode[3]
     return eqs
+
+
+def intervals_per_segment(modes, n_exchanges: int) -> np.ndarray:
+    """(segments, exchanges) int: the dynamic body's area interval of each exchange in each segment (0: none)."""
+    ivs = np.zeros((len(modes), n_exchanges), dtype=np.int64)
+    for i, mode in enumerate(modes):
+        if mode is not None and len(mode) == 3:
+            ivs[i] = [k if k is not None else 0 for k in mode[1]]
+    return ivs
 
 
 def opened_per_segment(modes, pop_vents) -> np.ndarray:
@@ -118,6 +136,7 @@ def opened_per_segment(modes, pop_vents) -> np.ndarray:
     during the segment, else 1."""
     ops = np.ones((len(modes), len(pop_vents)), dtype=np.int64)
     for i, mode in enumerate(modes):
+        mode = _network_mode(mode)
         for j, pop in enumerate(pop_vents):
             if pop and not (mode is not None and mode[0][j]):
                 ops[i, j] = 0
@@ -137,5 +156,6 @@ def history(fast, traj, times, eqs=None) -> np.ndarray | None:
     if eqs is None:
         eqs = equalised_per_segment(traj.modes, len(fast.network.exchanges))
     ops = opened_per_segment(traj.modes, fast.model[12][:, 6])
-    ok, out = history_rows(fast.model, recs[0], recs[1], eqs, ops, np.ascontiguousarray(times, dtype=float))
+    ivs = intervals_per_segment(traj.modes, len(fast.network.exchanges))
+    ok, out = history_rows(fast.model, recs[0], recs[1], eqs, ops, ivs, np.ascontiguousarray(times, dtype=float))
     return out if ok else None

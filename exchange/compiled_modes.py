@@ -6,7 +6,8 @@ Mirrors of :meth:`exchange.network.Network.events` (which switches exist in the 
 model tuple of :class:`exchange.compiled.CompiledNetwork`: ``M[20]`` equalised flags, ``M[21]`` 0 while a pop vent
 has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`` and ``M[13]`` are the exchanges'
 ``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`). Switch kinds: 0 choke, 1 one-way reversal, 2 equalise,
-3 release, 4 pop, 5 pop-drop, 6 pop-hold.
+3 release, 4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body reaching the crossing above/below its area interval
+``M[23][j]``, 10 its turning point.
 """
 from __future__ import annotations
 
@@ -22,6 +23,12 @@ def watched(M, kind, j):
     """Switch (kind, exchange j) is one of :meth:`Network.events` in the current discrete state: equalise while
     open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped."""
     eq, op, hold = M[20], M[21], M[22]
+    if kind == 8:  # a crossing above the body's area interval exists
+        return M[23][j] < M[6][M[12][j, 8], 1] - 1
+    if kind == 9:
+        return M[23][j] > 0
+    if kind == 10:
+        return True
     if kind == 2 or kind == 3:
         return eq[j] == (1 if kind == 3 else 0)
     if kind >= 4:
@@ -33,7 +40,11 @@ def watched(M, kind, j):
 def on_event(M, kind, j, t):
     """:meth:`Network.on_event`: equalise holds the exchange closed, release opens it; a pop crossing starts the
     hold (or pops at once without a hold time), a drop re-arms, the hold's end pops."""
-    if kind == 2 or kind == 3:
+    if kind == 8 or kind == 9:  # the body's displacement passed the crossing: the next area interval
+        M[23][j] += 1 if kind == 8 else -1
+    elif kind == 10:
+        pass  # a turning point only ends the segment
+    elif kind == 2 or kind == 3:
         M[20][j] = 1 if kind == 2 else 0
     elif kind == 4 and M[13][j, 5] > 0.0:
         M[22][j] = t
@@ -46,10 +57,12 @@ def on_event(M, kind, j, t):
 @njit(cache=True)
 def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
     """Row nseg of the segment table: first record, end record, t_min, t_max, mode code (bits: equalised), then
-    per exchange popped (pop vents only), then per exchange the hold start [s] (NaN: none)."""
+    per exchange popped (pop vents only), then per exchange the hold start [s] (NaN: none), then per exchange the
+    dynamic body's area interval."""
     ei, op, hold = M[12], M[21], M[22]
     ne = op.size
     segs[nseg, 0], segs[nseg, 1], segs[nseg, 2], segs[nseg, 3], segs[nseg, 4] = first, end, t_min, t_max, mode
     for j in range(ne):
         segs[nseg, 5 + j] = 1.0 if ei[j, 6] == 1 and op[j] == 1 else 0.0
         segs[nseg, 5 + ne + j] = hold[j]
+        segs[nseg, 5 + 2 * ne + j] = M[23][j]

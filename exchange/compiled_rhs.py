@@ -158,15 +158,19 @@ def temperature(rows, breaks, linear, n, nmol, U, T_guess, row):
 
 
 @njit(cache=True, inline="always")
-def volume_of(ci, cf, tx, ty, ti, i, t):
+def volume_of(ci, cf, tx, ty, ti, i, t, y):
     """(V, dV/dt) of cavity i's geometric volume [m^3, m^3/s] (FixedVolume, TableVolume, ScaledMeshVolume, a
-    volume wrapped around prescribed bodies: a cubic spline of time)."""
+    volume wrapped around prescribed bodies: a cubic spline of time, kind 3, or around the dynamic body: of its
+    displacement, kind 4)."""
     kind = ci[i, 2]
     if kind == 0:
         return cf[i, 5], 0.0
     k = ci[i, 3]
     if kind == 3:
         return spline_value(tx, ty, ti, k, t)
+    if kind == 4:  # a spline of the dynamic body's displacement y[ci[i, 6]]: dV/dt = dV/ds·v
+        value, slope = spline_value(tx, ty, ti, k, y[ci[i, 6]])
+        return value, slope * y[ci[i, 6] + 1]
     if kind == 1:
         return table_value(tx, ty, ti, k, t), table_slope(tx, ty, ti, k, t)
     s = table_value(tx, ty, ti, k, t)
@@ -205,7 +209,7 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
             T = T_guess[i]
             mixture_row(rows, n, range_of(breaks, T), row)
         T_guess[i] = T
-        Vg, rate = volume_of(ci, cf, tx, ty, ti, i, t)
+        Vg, rate = volume_of(ci, cf, tx, ty, ti, i, t, y)
         Vt = Vg + cf[i, 1]
         if Vt > cf[i, 2]:
             V_eos = Vt
@@ -228,15 +232,21 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
 
 
 @njit(cache=True, inline="always")
-def exchange_area(ei, ef, op, tx, ty, ti, j, t):
+def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
     """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area` without delta area);
-    ``op[j]`` is 0 while a pop vent has not popped."""
+    ``op[j]`` is 0 while a pop vent has not popped; ``iv[j]`` the interval of the dynamic body's displacement
+    that holds the area of an area kind 2 (``ei[j, 10]``)."""
     if ei[j, 4] == 1 and not (ef[j, 2] <= t < ef[j, 3]):
         return 0.0
     if op[j] == 0:
         return 0.0
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
-    base = step_value(tx, ty, ti, ei[j, 8], t) if ei[j, 8] >= 0 else ef[j, 0]
+    if ei[j, 10] == 2:
+        base = ty[ti[ei[j, 8], 0] + iv[j]]
+    elif ei[j, 8] >= 0:
+        base = step_value(tx, ty, ti, ei[j, 8], t)
+    else:
+        base = ef[j, 0]
     if ei[j, 9] >= 0:  # the leakage surface scales with its cavity mesh: area × s²
         sc = table_value(tx, ty, ti, ei[j, 9], t)
         base *= sc * sc
@@ -267,10 +277,10 @@ def law_flow(ei, ef, st, amb, j, u, p_down, area):
 
 
 @njit(cache=True, inline="always")
-def exchange_flow(ei, ef, eq, op, tx, ty, ti, st, amb, j, t):
+def exchange_flow(ei, ef, eq, op, iv, tx, ty, ti, st, amb, j, t):
     """Signed mass flow [kg/s] of exchange j, up → down (:meth:`exchange.vent.Exchange.mass_flow`);
     0 while equalised or not popped."""
-    area = exchange_area(ei, ef, op, tx, ty, ti, j, t)
+    area = exchange_area(ei, ef, op, iv, tx, ty, ti, j, t)
     if area <= 0.0 or eq[j] == 1:
         return 0.0
     a, b = ei[j, 0], ei[j, 1]
@@ -293,7 +303,7 @@ def _transfer(ci, dy, i, mdot, edot, st, amb, src):
 
 @njit(cache=True)
 def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb,
-                ledger, T_guess, st, n, row, eq, op):
+                ledger, T_guess, st, n, row, eq, op, iv):
     """d(unknowns)/dt into dy (:meth:`exchange.network.Network.rhs`); False if a temperature solve failed.
 
     ``seg_end``: inputs are read at its left limit when t reaches it (:meth:`Network.input_time`); ``ledger``:
@@ -328,7 +338,7 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
             dy[c + 2] += work
             dy[c + 3] += heat
     for j in range(ei.shape[0]):
-        mdot = exchange_flow(ei, ef, eq, op, tx, ty, ti, st, amb, j, t)
+        mdot = exchange_flow(ei, ef, eq, op, iv, tx, ty, ti, st, amb, j, t)
         if mdot == 0.0:
             continue
         src = ei[j, 0] if mdot >= 0.0 else ei[j, 1]
@@ -340,6 +350,25 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
         dy[e] += mdot
         dy[e + 1] += edot
     return ok
+
+
+@njit(cache=True)
+def body_rhs(y, dy, ci, tx, ty, ti, st, amb, bd):
+    """ds/dt = v, dv/dt = g + F/m of the dynamic body (:meth:`cases.scene_network.SceneNetwork.rhs` with
+    :meth:`~cases.scene_network.SceneNetwork.applied_force`): F = (p − p_amb)·dV/ds of the cavity it intrudes into
+    + (p − p_amb)·A of its pressure cavity − preload − k·s. ``bd``: offset, mass, gravity, pushed cavity (−1),
+    pressure cavity (−1), pressure area, stiffness, preload (:func:`exchange.compiled.lower`)."""
+    k = int(bd[0])
+    s, v = y[k], y[k + 1]
+    force = 0.0
+    pushed, other = int(bd[3]), int(bd[4])
+    if pushed >= 0:
+        force += (st[pushed, P] - amb[0]) * spline_value(tx, ty, ti, ci[pushed, 3], s)[1]
+    if other >= 0:
+        force += (st[other, P] - amb[0]) * bd[5]
+    force -= bd[7] + bd[6] * s
+    dy[k] = v
+    dy[k + 1] = bd[2] + force / bd[1]
 
 
 @njit(cache=True)

@@ -21,7 +21,7 @@ from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_F
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
 from .compiled_modes import on_event, record_segment, watched
-from .compiled_rhs import network_rhs, states, switch_value
+from .compiled_rhs import body_rhs, network_rhs, states, switch_value
 
 OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED = 0, 1, 2, 3, 4, 5
 MAX_EVENTS_AT_ONE_TIME = 20  # cavity.integration.MAX_EVENTS_AT_ONE_TIME
@@ -33,8 +33,11 @@ EPS4 = 4.0 * np.finfo(np.float64).eps
 def rhs(M, t, y, out, seg_end):
     """Network right-hand side into out; False when a temperature solve failed."""
     rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
-    return network_rhs(t, y, out, seg_end, rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef,
-                       amb, ledger, T_guess, st, n, row, eq, M[21])
+    ok = network_rhs(t, y, out, seg_end, rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef,
+                     amb, ledger, T_guess, st, n, row, eq, M[21], M[23])
+    if M[24][0] >= 0.0:
+        body_rhs(y, out, ci, tx, ty, ti, st, amb, M[24])
+    return ok
 
 
 @njit(cache=True)
@@ -46,11 +49,42 @@ def switches(M, kinds, js, t, y, seg_end, vals):
     states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t_in, y, T_guess, st, n, row)
     for q in range(kinds.size):
         j = js[q]
-        if kinds[q] == 6:  # 1 (never watched) when not holding
+        if kinds[q] >= 8:
+            vals[q] = body_switch(M, kinds[q], j, y)
+        elif kinds[q] == 6:  # 1 (never watched) when not holding
             h = ef[j, 5]
             vals[q] = (t - (M[22][j] + h)) / h if h > 0.0 and not math.isnan(M[22][j]) else 1.0
         else:
             vals[q] = switch_value(kinds[q], j, ei, ef, st, amb)
+
+
+@njit(cache=True)
+def body_switch(M, kind, j, y):
+    """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
+    of exchange j, and v/v_scale (10) (:meth:`cases.scene_areas.GeometricAreas._area_events`)."""
+    bd = M[24]
+    k = int(bd[0])
+    if kind == 10:
+        return y[k + 1] / bd[8]
+    start = M[6][M[12][j, 8], 0]  # step table: x = [−inf, crossings...]
+    i = M[23][j]
+    c = M[4][start + 1 + i] if kind == 8 else M[4][start + i]
+    return (y[k] - c) / M[13][j, 8]
+
+
+@njit(cache=True)
+def rederive_intervals(M, y):
+    """The area interval of each exchange re-derived from the body's displacement when it lies outside by more
+    than the slack (:meth:`cases.scene_areas.GeometricAreas._rederive_intervals`)."""
+    bd, ei, tx, ti, iv = M[24], M[12], M[4], M[6], M[23]
+    s = y[int(bd[0])]
+    for j in range(iv.size):
+        if ei[j, 10] != 2:
+            continue
+        start, n = ti[ei[j, 8], 0], ti[ei[j, 8], 1] - 1  # n crossings at tx[start + 1 ...]
+        i = iv[j]
+        if (i > 0 and s < tx[start + i] - bd[9]) or (i < n and s > tx[start + 1 + i] + bd[9]):
+            iv[j] = np.searchsorted(tx[start + 1:start + 1 + n], s, side="right")
 
 
 @njit(cache=True)
@@ -271,7 +305,9 @@ def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
     for q in range(nsw):
         if not watched(M, kinds[q], js[q]):
             continue  # the switch of another discrete state
-        if q == last_q and t == last_t:
+        if kinds[q] == 8 or kinds[q] == 9:  # the body leaves its interval through that end only
+            d = 1.0 if kinds[q] == 8 else -1.0
+        elif q == last_q and t == last_t:
             d = -last_dir
         elif abs(vals[q]) > near:
             d = 1.0 if vals[q] < 0 else -1.0
@@ -296,6 +332,8 @@ def begin_segment(M, kinds, js, t, y, seg_end):
     the mode bitmask (bit j: exchange j equalised)."""
     eq, ei = M[20], M[12]
     one_k, one_j, val = np.empty(1, np.int64), np.empty(1, np.int64), np.empty(1)
+    if M[24][0] >= 0.0:
+        rederive_intervals(M, y)
     mode = 0
     for j in range(eq.size):
         if ei[j, 5] == 1 and eq[j] == 0:
@@ -318,7 +356,7 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near):
     """
     n = y0.size
     buf, cnt = np.empty((64, RECORD + 8 * n)), np.zeros(1, np.int64)
-    segs, evs = np.empty((16, 5 + 2 * M[21].size)), np.empty((16, 3))
+    segs, evs = np.empty((16, 5 + 3 * M[21].size)), np.empty((16, 3))
     nseg, nev = 0, 0
     stats = np.zeros(4, np.int64)
     t, y = t0, y0.copy()

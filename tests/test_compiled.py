@@ -27,8 +27,8 @@ from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
 
 LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
-             "airbag_vented", "airbag_impactor", "seal_vent", "seal_vent_nodes", "vent_bar_edge"]  # prescribed
-# bodies: area steps and volume splines
+             "airbag_vented", "airbag_impactor", "airbag_impactor_dynamic", "seal_vent", "seal_vent_nodes",
+             "vent_bar_edge"]  # bodies: area steps and volume splines, the dynamic body's areas and switches
 
 
 def model_of(name):
@@ -61,7 +61,7 @@ def test_jitted_orifice_law_equals_the_pure_function(p_down, gamma):
 
 
 @pytest.mark.parametrize("name", ["blowdown_subsonic", "compression_mesh", "airbag_vented", "airbag_impactor",
-                                  "seal_vent"])
+                                  "airbag_impactor_dynamic", "seal_vent"])
 def test_jitted_right_hand_side_equals_network_rhs(name):
     model = model_of(name)
     net, fast = model.network, model.network.compiled_solver()
