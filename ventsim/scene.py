@@ -1,0 +1,140 @@
+"""A scene built from Python (dicts, lists, arrays, trimesh meshes) or read from a TOML file.
+
+A Python scene is validated by the very code that validates a TOML file (:func:`cases.scene.scene_from_dict`):
+every array becomes a CSV table and every mesh a PLY file in a private folder (full precision), named after the
+key that holds it, and the dict then goes through the loader like a parsed TOML file. An error is therefore the
+same one-line :class:`cases.errors.SceneError` naming the key.
+"""
+from __future__ import annotations
+
+import copy
+import dataclasses
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from cases.errors import SceneError
+from cases.scene import load_scene, read_scene_data, scene_from_dict
+
+__all__ = ["Scene", "load"]
+
+
+def _is_mesh(value) -> bool:
+    return hasattr(value, "vertices") and hasattr(value, "faces") and hasattr(value, "export")
+
+
+def _file_name(where: str, suffix: str) -> str:
+    return "".join(c if c.isalnum() or c in "._-" else "_" for c in where).strip("_") + suffix
+
+
+def _write_table(value, path: Path, where: str) -> None:
+    rows = np.asarray(value, dtype=np.float64)
+    if rows.ndim != 2 or rows.shape[1] != 2:
+        raise SceneError("<python scene>", where, f"expected a table of shape (n, 2) (x, y), got shape {rows.shape}")
+    np.savetxt(path, rows, delimiter=",", fmt="%.17g")
+
+
+def _externalised(value, folder: Path, where: str):
+    """``value`` with every array written as a CSV and every mesh as a PLY file in ``folder`` (absolute names)."""
+    if _is_mesh(value):
+        path = folder / _file_name(where, ".ply")
+        value.export(path, file_type="ply", encoding="binary")
+        return str(path)
+    if hasattr(value, "to_numpy") and hasattr(value, "columns"):  # a pandas DataFrame of two columns
+        value = value.to_numpy()
+    if isinstance(value, np.ndarray) and value.ndim == 2:
+        path = folder / _file_name(where, ".csv")
+        _write_table(value, path, where)
+        return str(path)
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        value = {f.metadata.get("toml") or f.name: getattr(value, f.name) for f in dataclasses.fields(value)
+                 if not f.name.startswith("_")}
+    if isinstance(value, dict):
+        return {k: _externalised(v, folder, f"{where}.{k}" if where else str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_externalised(v, folder, f"{where}[{i}]") for i, v in enumerate(value)]
+    return value
+
+
+class Scene:
+    """A validated scene, ready for :func:`ventsim.run`.
+
+    Parameters
+    ----------
+    data : dict, optional
+        The scene as the dict a TOML file parses to (``{"time": {"end": 0.1}, "cavity": [...], ...}``). Any
+        value may be a NumPy array of shape (n, 2) (a table: first column x, second y, in the key's units), a
+        pandas DataFrame of two columns, or a ``trimesh.Trimesh`` (a mesh, coordinates in metres) where the
+        TOML file would name a CSV or mesh file. Strings name files relative to ``base``.
+    base : path-like, optional
+        Folder that relative file names are read from (default: the current folder).
+    name : str
+        What error messages call the scene (default ``"<python scene>"``).
+    **tables
+        Top-level tables, merged into ``data`` (``Scene(time={"end": 0.1}, cavity=[...])``).
+
+    Raises
+    ------
+    cases.errors.SceneError
+        One line naming the key and what was expected, exactly as for a TOML file.
+
+    Examples
+    --------
+    >>> s = Scene(time={"end": 0.01}, cavity=[{"name": "tank", "pressure": 2e5, "temperature": 300.0,
+    ...                                        "volume": 1e-3}])
+    >>> s.title, s.spec.cavity[0].volume
+    ('', 0.001)
+    >>> Scene(time={"end": 0.01}, cavity=[{"name": "tank", "presure": 2e5}])
+    Traceback (most recent call last):
+    ...
+    cases.errors.SceneError: <python scene>: cavity[0].presure: unknown key (did you mean 'pressure'?); ...
+    """
+
+    def __init__(self, data: dict | None = None, /, *, base=None, name: str = "<python scene>", **tables):
+        data = {**copy.copy(data or {}), **tables}
+        self._folder = tempfile.TemporaryDirectory(prefix="ventsim-scene-")  # lives as long as the scene
+        self.data = _externalised(data, Path(self._folder.name), "")
+        self.spec = scene_from_dict(self.data, Path(base or ".").resolve() / name)
+
+    @classmethod
+    def from_toml(cls, path) -> "Scene":
+        """The scene of a TOML file (same as :func:`load`)."""
+        scene = cls.__new__(cls)
+        scene._folder, scene.data, scene.spec = None, read_scene_data(path), load_scene(path)
+        return scene
+
+    @property
+    def title(self) -> str:
+        return self.spec.title
+
+    @property
+    def path(self) -> Path:
+        """The scene file (for a Python scene: ``base / name``, which need not exist)."""
+        return self.spec.path
+
+    @property
+    def sha256(self) -> str:
+        """The scene's hash (:func:`cases.provenance.scene_hash`), as written to summary.json."""
+        from cases.provenance import scene_hash
+
+        return scene_hash(self.spec)
+
+    def __repr__(self) -> str:
+        s = self.spec
+        return (f"Scene({s.title or str(s.path)!r}: {len(s.cavity)} cavities, {len(s.exchange)} exchanges, "
+                f"{len(s.body)} bodies, end {s.time.end:g} s)")
+
+
+def load(path) -> Scene:
+    """Read and validate a TOML scene file (every table and mesh it names is read and checked too).
+
+    >>> import ventsim
+    >>> ventsim.load("cases/verification/fill_constant.toml").spec.cavity[0].name
+    'tank'
+    """
+    return Scene.from_toml(path)
