@@ -1,7 +1,7 @@
 """A scene built from Python (dicts, lists, arrays, trimesh meshes) or read from a TOML file.
 
 A Python scene is validated by the very code that validates a TOML file (:func:`cases.scene.scene_from_dict`):
-every array becomes a CSV table and every mesh a PLY file in a private folder (full precision), named after the
+every array becomes a CSV table and every mesh a PLY file (double precision) in a private folder, named after the
 key that holds it, and the dict then goes through the loader like a parsed TOML file. An error is therefore the
 same one-line :class:`cases.errors.SceneError` naming the key.
 """
@@ -21,11 +21,30 @@ __all__ = ["Scene", "load"]
 
 
 def _is_mesh(value) -> bool:
-    return hasattr(value, "vertices") and hasattr(value, "faces") and hasattr(value, "export")
+    return hasattr(value, "vertices") and hasattr(value, "faces") and not isinstance(value, dict)
 
 
 def _file_name(where: str, suffix: str) -> str:
     return "".join(c if c.isalnum() or c in "._-" else "_" for c in where).strip("_") + suffix
+
+
+def write_ply(path: Path, vertices, faces) -> None:
+    """A binary PLY with double-precision vertices (trimesh's own PLY export rounds them to float32).
+
+    Parameters
+    ----------
+    vertices : (n, 3) float
+        [m]
+    faces : (m, 3) or (m, 4) int
+    """
+    v, f = np.asarray(vertices, "<f8"), np.asarray(faces, "<i4")
+    header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\nproperty double x\n"
+              f"property double y\nproperty double z\nelement face {len(f)}\n"
+              "property list uchar int vertex_indices\nend_header\n")
+    cells = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", (f.shape[1],))])
+    cells["n"], cells["i"] = f.shape[1], f
+    with open(path, "wb") as fh:
+        fh.write(header.encode() + v.tobytes() + cells.tobytes())
 
 
 def _write_table(value, path: Path, where: str) -> None:
@@ -39,7 +58,7 @@ def _externalised(value, folder: Path, where: str):
     """``value`` with every array written as a CSV and every mesh as a PLY file in ``folder`` (absolute names)."""
     if _is_mesh(value):
         path = folder / _file_name(where, ".ply")
-        value.export(path, file_type="ply", encoding="binary")
+        write_ply(path, value.vertices, value.faces)
         return str(path)
     if hasattr(value, "to_numpy") and hasattr(value, "columns"):  # a pandas DataFrame of two columns
         value = value.to_numpy()
@@ -89,7 +108,7 @@ class Scene:
     ...                                        "volume": 1e-3}])
     >>> s.title, s.spec.cavity[0].volume
     ('', 0.001)
-    >>> Scene(time={"end": 0.01}, cavity=[{"name": "tank", "presure": 2e5}])
+    >>> Scene(time={"end": 0.01}, cavity=[{"name": "tank", "presure": 2e5}])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     cases.errors.SceneError: <python scene>: cavity[0].presure: unknown key (did you mean 'pressure'?); ...
@@ -99,7 +118,12 @@ class Scene:
         data = {**copy.copy(data or {}), **tables}
         self._folder = tempfile.TemporaryDirectory(prefix="ventsim-scene-")  # lives as long as the scene
         self.data = _externalised(data, Path(self._folder.name), "")
-        self.spec = scene_from_dict(self.data, Path(base or ".").resolve() / name)
+        try:
+            self.spec = scene_from_dict(self.data, Path(base or ".").resolve() / name)
+        except SceneError as exc:  # name the scene as the user did, not by its anchor path
+            error = SceneError(name, "", str(exc)[len(exc.file) + 2:])
+            error.where = exc.where
+            raise error from None
 
     @classmethod
     def from_toml(cls, path) -> "Scene":
