@@ -37,6 +37,8 @@ def colour_bar_column(image):
     scale = fraction_rgb(np.linspace(0.0, 1.0, 1001)).astype(float)
     for x in range(width - COLOUR_BAR_WIDTH, width):
         column = image[:, x].astype(float)
+        if np.count_nonzero(np.abs(column - 255).sum(axis=1)) < height // 2:
+            continue  # mostly white: no bar here
         off_scale = np.min(np.linalg.norm(column[:, None, :] - scale[None], axis=2), axis=1) > 3.0
         on = np.flatnonzero(~off_scale & (np.abs(column - 255).sum(axis=1) > 0))
         if len(on) < height // 2:
