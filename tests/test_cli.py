@@ -28,9 +28,9 @@ def test_exchange_columns(tmp_path, verification_dir):
     out = tmp_path / "o"
     main(["run", str(verification_dir / "blowdown_choked.toml"), "--out", str(out), "--quiet"])
     header = (out / "history.csv").read_text().splitlines()[0].split(",")
-    assert header[-2:] == ["vent.mass_flow [kg/s]", "vent.area [m^2]"]
+    assert header[-3:] == ["vent.mass_flow [kg/s]", "vent.area [m^2]", "vent.blocked_fraction [-]"]
     data = np.loadtxt(out / "history.csv", delimiter=",", skiprows=1)
-    assert np.all(data[:, -2] > 0) and np.all(data[:, -1] == 1e-4)
+    assert np.all(data[:, -3] > 0) and np.all(data[:, -2] == 1e-4) and np.all(data[:, -1] == 0.0)
 
 
 def test_failed_write_keeps_previous_file(tmp_path):
