@@ -16,7 +16,8 @@ surface alone (:func:`write_vtk_series` of render Frames) carries
 The ``.pvd`` file lists the ``.vtu`` files (relative paths) with their time in seconds, so ParaView's time
 slider shows the run's time. Every file is written under a temporary name and renamed into place.
 
-pyvista is imported inside the functions only (rendering and VTK output are optional parts of ventsim).
+The files are written by :func:`cases.vtu.write_vtu` (NumPy only); pyvista is imported by :func:`leak_polydata`
+only, for rendering.
 """
 from __future__ import annotations
 
@@ -26,8 +27,9 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from cases.output import atomic_path
+from cases.vtu import write_vtu
 
-__all__ = ["leak_polydata", "polygon_cells", "surface_grid", "write_pvd", "write_vtk_series", "write_surface_series"]
+__all__ = ["frame_arrays", "leak_polydata", "polygon_cells", "write_pvd", "write_vtk_series", "write_surface_series"]
 
 
 def polygon_cells(faces):
@@ -68,15 +70,12 @@ def leak_polydata(frame):
     """
     import pyvista as pv
 
-    vertices = np.asarray(frame.leak_vertices, dtype=np.float64)
-    mesh = pv.PolyData(vertices, faces=polygon_cells(frame.leak_faces))
-    mesh.cell_data["blocked_fraction"] = np.asarray(frame.blocked_fraction, dtype=np.float64)
-    mesh.point_data["active"] = np.asarray(frame.active_nodes, dtype=bool).astype(np.uint8)
-    gaps = np.asarray(frame.gaps, dtype=np.float64)
-    mesh.point_data["gap"] = np.where(np.isfinite(gaps), gaps, np.nan)
-    if getattr(frame, "cpress", None) is not None:
-        mesh.point_data["CPRESS"] = np.asarray(frame.cpress, dtype=np.float64)
-        mesh.point_data["status"] = np.asarray(frame.contact_status, dtype=np.uint8)
+    mesh = pv.PolyData(np.asarray(frame.leak_vertices, dtype=np.float64), faces=polygon_cells(frame.leak_faces))
+    points, cells = frame_arrays(frame)
+    for name, values in points.items():
+        mesh.point_data[name] = values
+    for name, values in cells.items():
+        mesh.cell_data[name] = values
     return mesh
 
 
@@ -129,30 +128,25 @@ def write_vtk_series(frames, folder, stem="leakage"):
     entries = []
     for index, frame in enumerate(frames):
         name = f"{stem}_{index:0{width}d}.vtu"
-        _save(leak_polydata(frame).cast_to_unstructured_grid(), folder / name)
+        _save(folder / name, frame.leak_vertices, frame.leak_faces, *frame_arrays(frame), {"time": frame.time})
         entries.append((frame.time, name))
     return write_pvd(folder / f"{stem}.pvd", entries)
 
 
-def _save(grid, path: Path) -> None:
+def frame_arrays(frame) -> tuple[dict, dict]:
+    """(point data, cell data) of a render Frame's leakage surface: the arrays listed in the module docstring."""
+    gaps = np.asarray(frame.gaps, dtype=np.float64)
+    points = {"active": np.asarray(frame.active_nodes, dtype=bool).astype(np.uint8),
+              "gap": np.where(np.isfinite(gaps), gaps, np.nan)}
+    if getattr(frame, "cpress", None) is not None:
+        points.update(CPRESS=np.asarray(frame.cpress, dtype=np.float64),
+                      status=np.asarray(frame.contact_status, dtype=np.uint8))
+    return points, {"blocked_fraction": np.asarray(frame.blocked_fraction, dtype=np.float64)}
+
+
+def _save(path: Path, vertices, faces, point_data, cell_data, field_data) -> None:
     with atomic_path(path) as tmp:
-        # the temporary name keeps the .vtu suffix pyvista picks the writer by; raw binary (zlib costs 5x the time)
-        grid.save(tmp, binary=True, compression=None)
-
-
-def surface_grid(surface):
-    """A :class:`cases.scene_surfaces.Surface` as a ``pyvista.UnstructuredGrid`` with its point, cell and field
-    data (field data as one-element float64 arrays)."""
-    import pyvista as pv
-
-    mesh = pv.PolyData(np.asarray(surface.vertices, dtype=np.float64), faces=polygon_cells(surface.faces))
-    for name, values in surface.point_data.items():
-        mesh.point_data[name] = np.asarray(values)
-    for name, values in surface.cell_data.items():
-        mesh.cell_data[name] = np.asarray(values)
-    for name, value in surface.field_data.items():
-        mesh.field_data[name] = np.atleast_1d(np.asarray(value, dtype=np.float64))
-    return mesh.cast_to_unstructured_grid()
+        write_vtu(tmp, vertices, faces, point_data, cell_data, field_data)
 
 
 def write_surface_series(series, folder, stem="scene") -> list:
@@ -179,7 +173,8 @@ def write_surface_series(series, folder, stem="scene") -> list:
     for index, surfaces in enumerate(series):
         for part, surface in enumerate(surfaces):
             name = f"{surface.name}_{index:0{width}d}.vtu"
-            _save(surface_grid(surface), folder / name)
+            _save(folder / name, surface.vertices, surface.faces, surface.point_data, surface.cell_data,
+                  surface.field_data)
             t = float(surface.field_data["time"])
             per_surface.setdefault(surface.name, []).append((t, name))
             scene.append((t, name, part))
