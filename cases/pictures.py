@@ -16,7 +16,7 @@ from .scene_surfaces import blocked_exchanges, body_vertices, cavity_vertices, c
 __all__ = ["frames_for", "write_pictures", "write_vtk", "default_times", "blocked_exchanges", "GIF_FRAMES",
            "GIF_SIZE", "PNG_SIZE"]
 
-GIF_FRAMES = 16
+GIF_FRAMES = 12
 """Frames of the GIF (and of the VTK series) over a run."""
 GIF_SIZE = (400, 300)
 """Size of the GIF's 3-D view [px] (the colour-bar strip is added to its width)."""

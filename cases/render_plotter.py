@@ -15,7 +15,7 @@ import numpy as np
 from .render_annotate import annotate
 from .render_style import (ACTIVE_NODE_RGB, BACKGROUND_RGB, BODY_OPACITY, BODY_RGB, CONTEXT_RGB, EDGE_RGB, LEGEND,
                            VIEW_ANGLE, fraction_rgb, title)
-from .render_vtk import leak_polydata, polygon_cells
+from .render_vtk import frame_arrays, leak_polydata, polygon_cells
 
 os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
@@ -122,12 +122,12 @@ class FramePlotter:
         import pyvista as pv
 
         leak = self._meshes["leak"]
-        fresh = leak_polydata(frame)
-        leak.points = fresh.points
-        for name in fresh.cell_data.keys():
-            leak.cell_data[name] = fresh.cell_data[name]
-        for name in fresh.point_data.keys():
-            leak.point_data[name] = fresh.point_data[name]
+        leak.points = np.asarray(frame.leak_vertices, dtype=np.float64)
+        points, cells = frame_arrays(frame)
+        for name, values in cells.items():
+            leak.cell_data[name] = values
+        for name, values in points.items():
+            leak.point_data[name] = values
         for mesh, (vertices, _) in zip(self._meshes["bodies"] + self._meshes["context"],
                                        list(frame.bodies) + list(frame.context)):
             mesh.points = np.asarray(vertices, dtype=np.float64)
