@@ -90,3 +90,13 @@ def test_results_save_and_summary_carry_version_and_hash(tmp_path):
     fig = r.plot()
     assert [ax.get_ylabel() for ax in fig.axes] == ["pressure [kPa]", "temperature [K]", "mass flow [kg/s]"]
     assert math.isclose(r["tank.pressure"][-1], r.summary["cavities"]["tank"]["final pressure [Pa]"], rel_tol=1e-12)
+
+
+def test_a_scene_rebuilt_from_the_spec_objects_of_a_loaded_one_is_the_same_scene():
+    toml = ROOT / "cases/airbag_vented.toml"
+    spec = ventsim.load(toml).spec
+    rebuilt = ventsim.Scene(title=spec.title, time=spec.time, solver=spec.solver, ambient=spec.ambient,
+                            species=list(spec.species), cavity=list(spec.cavity), exchange=list(spec.exchange),
+                            base=toml.parent)
+    assert rebuilt.sha256 == ventsim.load(toml).sha256
+    assert rebuilt.spec.cavity[0].inflator[0].mass_flow.y == spec.cavity[0].inflator[0].mass_flow.y

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from cases.errors import SceneError
+from cavity.tables import Table
 from cases.scene import load_scene, read_scene_data, scene_from_dict
 
 __all__ = ["Scene", "load"]
@@ -22,6 +23,20 @@ __all__ = ["Scene", "load"]
 
 def _is_mesh(value) -> bool:
     return hasattr(value, "vertices") and hasattr(value, "faces") and not isinstance(value, dict)
+
+
+def _is_default(f, value) -> bool:
+    """True when a dataclass field holds its default (left out, as a TOML file would)."""
+    if f.default is not dataclasses.MISSING:
+        default = f.default
+    elif f.default_factory is not dataclasses.MISSING:
+        default = f.default_factory()
+    else:
+        return False
+    try:
+        return type(value) is type(default) and bool(value == default)
+    except ValueError:  # arrays
+        return False
 
 
 def _file_name(where: str, suffix: str) -> str:
@@ -62,6 +77,8 @@ def _externalised(value, folder: Path, where: str):
         return str(path)
     if hasattr(value, "to_numpy") and hasattr(value, "columns"):  # a pandas DataFrame of two columns
         value = value.to_numpy()
+    if isinstance(value, Table):  # a validated table (from another scene's spec)
+        value = np.column_stack([value.x, value.y])
     if isinstance(value, np.ndarray) and value.ndim == 2:
         path = folder / _file_name(where, ".csv")
         _write_table(value, path, where)
@@ -72,7 +89,7 @@ def _externalised(value, folder: Path, where: str):
         return value.item()
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         value = {f.metadata.get("toml") or f.name: getattr(value, f.name) for f in dataclasses.fields(value)
-                 if not f.name.startswith("_")}
+                 if not f.name.startswith("_") and not _is_default(f, getattr(value, f.name))}
     if isinstance(value, dict):
         return {k: _externalised(v, folder, f"{where}.{k}" if where else str(k)) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -89,7 +106,9 @@ class Scene:
         The scene as the dict a TOML file parses to (``{"time": {"end": 0.1}, "cavity": [...], ...}``). Any
         value may be a NumPy array of shape (n, 2) (a table: first column x, second y, in the key's units), a
         pandas DataFrame of two columns, or a ``trimesh.Trimesh`` (a mesh, coordinates in metres) where the
-        TOML file would name a CSV or mesh file. Strings name files relative to ``base``.
+        TOML file would name a CSV or mesh file. Strings name files relative to ``base``. Objects are taken by
+        their fields: the spec dataclasses of a loaded scene (``ventsim.load(path).spec.cavity[0]``, with its
+        tables) or any dataclass whose fields are scene keys.
     base : path-like, optional
         Folder that relative file names are read from (default: the current folder).
     name : str
