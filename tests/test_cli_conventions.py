@@ -89,3 +89,14 @@ def test_a_message_before_numba_compiles(tmp_path, monkeypatch):
     _announce_compilation(missing)  # cached on disk: nothing to say
     _announce_compilation(SimpleNamespace(signatures=["compiled"]))  # compiled in this process
     assert len(said) == 1
+
+
+def test_the_install_warm_up_covers_the_compiled_path_and_the_blockage_kernels():
+    from cases import warmup
+    from cases.build import build_model
+    from cases.runner import run
+    from cases.scene import load_scene
+
+    models = [build_model(load_scene(warmup.HERE / name)) for name in warmup.SCENES]
+    assert run(models[0]).trajectory.path == "compiled"
+    assert models[1].geometry is not None  # a blocked leakage surface: the blockage kernels
