@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .leak_state import leak_state, open_area
+from .leak_state import leak_area_at, open_area_at, theta_at
 
 __all__ = ["engineering_columns"]
 
@@ -14,8 +14,12 @@ def _blocked_fraction(model, trajectory, j: int, times) -> np.ndarray:
     geo = model.geometry
     if geo is None or j >= len(geo["areas"]) or geo["areas"][j] is None:
         return np.zeros(len(times))
-    a_open = open_area(model, j)
-    return np.array([leak_state(model, trajectory, j, float(t), a_open).blocked_fraction for t in times])
+    track, out = geo["areas"][j].track, np.zeros(len(times))
+    for k, t in enumerate(times):
+        th = theta_at(model, trajectory, float(t))
+        a_open = open_area_at(track, th)
+        out[k] = 1.0 - leak_area_at(track, th) / a_open if a_open > 0.0 else 0.0
+    return out
 
 
 def _extra(model, trajectory, name: str, times) -> list:

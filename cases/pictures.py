@@ -41,9 +41,8 @@ def frame_at(results, j: int, t: float, *, whole_scene: bool = False):
     net.restore(results.trajectory.mode_at(t))
     p = net.states(t, results.trajectory(t))[net.exchanges[j].upstream].pressure
     cpress, status = contact_arrays(results, j, t)
-    res = state.result
-    return Frame(t, p, state.surface.vertices, state.surface.faces, state.face_fraction, res.active_nodes,
-                 res.distances, bodies, context, cpress=cpress, contact_status=status)
+    return Frame(t, p, state.surface.vertices, state.surface.faces, state.face_fraction, state.active,
+                 state.distances, bodies, context, cpress=cpress, contact_status=status)
 
 
 def frames_for(results, j: int, times) -> list:

@@ -73,8 +73,8 @@ def contact_arrays(results, j: int, t: float):
 
 
 def _leak_arrays(results, j: int, t: float, state) -> tuple[dict, dict]:
-    gaps = np.asarray(state.result.distances, dtype=np.float64)
-    points = {"active": np.asarray(state.result.active_nodes, dtype=bool).astype(np.uint8),
+    gaps = np.asarray(state.distances, dtype=np.float64)
+    points = {"active": state.active.astype(np.uint8),
               "gap": np.where(np.isfinite(gaps), gaps, np.nan)}
     cpress, status = contact_arrays(results, j, t)
     if cpress is not None:
