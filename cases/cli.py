@@ -1,26 +1,52 @@
-"""The ``ventsim`` command: run a scene, check the case library, render pictures."""
+"""The ``ventsim`` command: run a scene, check the case library, render pictures.
+
+Exit codes: 0 success; 1 ``ventsim check`` found a case off its reference; 2 a bad scene or command line (one
+line on stderr naming the file and the key); 130 interrupted (Ctrl-C).
+"""
 from __future__ import annotations
 
 import argparse
+import logging
 import sys
+import time
 from pathlib import Path
 
 from .errors import SceneError
 
-__all__ = ["main"]
+__all__ = ["main", "EXIT_OK", "EXIT_CHECK_FAILED", "EXIT_BAD_INPUT", "EXIT_INTERRUPTED"]
+
+EXIT_OK, EXIT_CHECK_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+log = logging.getLogger("ventsim")
+
+
+def _configure_logging(args) -> None:
+    """Messages of the ``ventsim`` logger on stderr: warnings only with --quiet, timings too with --verbose."""
+    level = logging.WARNING if getattr(args, "quiet", False) else (
+        logging.DEBUG if getattr(args, "verbose", False) else logging.INFO)
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("ventsim: %(message)s"))
+    log.handlers[:] = [handler]
+    log.setLevel(level)
+    log.propagate = False
 
 
 def _run(args) -> int:
     from .output import write_results
     from .runner import run_scene
 
+    start = time.process_time()
     results = run_scene(args.scene, progress=not args.quiet)
+    log.debug("built and solved in %.2f s CPU", time.process_time() - start)
+    start = time.process_time()
     paths = write_results(results, args.out)
+    log.debug("wrote history, summary and plot in %.2f s CPU", time.process_time() - start)
     if getattr(args, "render", False):
         from .pictures import write_pictures
 
+        start = time.process_time()
         pics = write_pictures(results, args.out, times=args.times)
         paths.update({f"{k} {i}": p for k, v in pics.items() for i, p in enumerate(v)})
+        log.debug("rendered in %.2f s CPU", time.process_time() - start)
     if not args.quiet:
         for name, cav in results.summary["cavities"].items():
             print(f"{name}: peak pressure {cav['peak pressure [Pa]']:.6g} Pa at {cav['peak pressure time [s]']:.6g} s")
@@ -33,7 +59,7 @@ def _run(args) -> int:
         print(f"solver {st['method']}: {st['steps']} steps, {st['rhs_calls']} RHS calls, {st['events']} events, "
               f"{st['wall time [s]']:.3f} s")
         print("wrote " + ", ".join(str(p) for p in paths.values()))
-    return 0
+    return EXIT_OK
 
 
 def _check(args) -> int:
@@ -47,16 +73,22 @@ def _check(args) -> int:
                                                f"cases: {', '.join(CASES)}")
     checks = check_all(args.cases or None, update=args.update)
     print(format_table(checks))
-    return 0 if all(c.passed for c in checks) else 1
+    return EXIT_OK if all(c.passed for c in checks) else EXIT_CHECK_FAILED
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="ventsim", description="Gas cavities venting through blockable leakage surfaces.")
+    from .provenance import version
+
+    p = argparse.ArgumentParser(prog="ventsim", description="Gas cavities venting through blockable leakage surfaces.",
+                                epilog="exit codes: 0 success, 1 a checked case is off its reference, 2 bad scene or "
+                                       "command line, 130 interrupted")
+    p.add_argument("--version", action="version", version=f"ventsim {version()}")
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("run", help="run a scene file and write history.csv, summary.json, history.png")
     r.add_argument("scene", type=Path, help="scene TOML file")
     r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
-    r.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    r.add_argument("--quiet", action="store_true", help="print nothing but errors (no progress bar)")
+    r.add_argument("--verbose", action="store_true", help="also print the CPU time of each phase")
     r.add_argument("--render", action="store_true",
                    help="also draw each blocked leakage surface off screen: PNGs, a GIF and a VTK series (.pvd)")
     r.add_argument("--times", type=float, nargs="+", default=None,
@@ -73,14 +105,15 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     args = parser().parse_args(argv)
+    _configure_logging(args)
     try:
         return args.func(args)
     except SceneError as exc:
         print(f"ventsim: error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         print("ventsim: interrupted", file=sys.stderr)
-        return 130
+        return EXIT_INTERRUPTED
 
 
 if __name__ == "__main__":

@@ -53,7 +53,11 @@ def reference_path(name: str) -> Path:
 
 
 def column_errors(columns, history, ref_columns, reference) -> dict:
-    """Per column: max |sim − ref| / max |ref| (inf when the shapes or names differ)."""
+    """Per column of the reference: max |sim − ref| / max |ref| (inf when the shapes differ or a reference column
+    is missing; columns added since the reference was written are not compared)."""
+    if set(ref_columns) <= set(columns) and len(history) == len(reference):
+        history = history[:, [list(columns).index(c) for c in ref_columns]]
+        columns = list(ref_columns)
     if list(columns) != list(ref_columns) or history.shape != reference.shape:
         return {"(shape or columns)": np.inf}
     scale = np.maximum(np.max(np.abs(reference), axis=0), 1e-300)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atomic_path", "write_history", "write_summary", "plot_history", "write_results"]
+__all__ = ["atomic_path", "write_history", "write_summary", "history_figure", "plot_history", "write_results"]
 
 
 @contextmanager
@@ -55,23 +55,28 @@ def write_summary(path: Path, summary: dict) -> None:
         tmp.write_text(json.dumps(_plain(summary), indent=2) + "\n")
 
 
-def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "") -> None:
-    """Pressure, temperature, exchange mass flows and, where the scene has them, body displacements and peak contact
-    pressure against time, one panel each (matplotlib, Agg)."""
+def history_figure(columns: list, history: np.ndarray, title: str = ""):
+    """The history figure: pressure, temperature, mass flows (exchanges and inflators), exchange areas and, where
+    the scene has them, blocked fractions, body displacements and peak contact pressure against time, one panel
+    each (matplotlib, Agg); returns the ``Figure``."""
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
     t = history[:, 0]
     panels = [("pressure [Pa]", "pressure [kPa]", 1e-3), ("temperature [K]", "temperature [K]", 1.0),
-              ("mass_flow [kg/s]", "mass flow [kg/s]", 1.0)]
-    optional = [(".displacement [m]", "body displacement [mm]", 1e3), ("max_cpress [Pa]", "max CPRESS [kPa]", 1e-3)]
-    panels += [p for p in optional if any(c.endswith(p[0]) for c in columns)]  # scenes with bodies, contact
-    fig, axes = plt.subplots(len(panels), 1, figsize=(8, 2.7 * len(panels)), sharex=True)
+              ("mass_flow [kg/s]", "mass flow [kg/s]", 1.0), (".area [m^2]", "exchange area [mm^2]", 1e6)]
+    optional = [(".blocked_fraction [-]", "blocked fraction [-]", 1.0),
+                (".displacement [m]", "body displacement [mm]", 1e3), ("max_cpress [Pa]", "max CPRESS [kPa]", 1e-3)]
+    panels = [p for p in panels if any(c.endswith(p[0]) for c in columns)]
+    panels += [p for p in optional if any(c.endswith(p[0]) and np.any(history[:, i])  # scenes with bodies, contact
+                                          for i, c in enumerate(columns))]
+    fig = Figure(figsize=(8, 2.3 * len(panels)))
+    axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     for ax, (suffix, label, factor) in zip(axes, panels):
         for i, c in enumerate(columns):
-            if c.endswith(suffix):
+            if c.endswith(suffix) and not c.endswith("gauge_pressure [Pa]"):
                 ax.plot(t * 1e3, history[:, i] * factor, label=c.split(" [")[0])
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
@@ -79,11 +84,17 @@ def plot_history(path: Path, columns: list, history: np.ndarray, title: str = ""
             ax.legend(fontsize=8, loc="best")
     axes[-1].set_xlabel("time [ms]")
     if title:
-        fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
+        fig.suptitle(title, fontsize=10, y=1.0 - 0.12 / fig.get_figheight())
+    height = fig.get_figheight()  # fixed margins [in] instead of tight_layout, which costs a whole extra draw
+    fig.subplots_adjust(left=0.1, right=0.98, top=1.0 - 0.45 / height, bottom=0.5 / height, hspace=0.55 / 2.3)
+    return fig
+
+
+def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "") -> None:
+    """:func:`history_figure` written to the PNG ``path``."""
+    fig = history_figure(columns, history, title)
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, dpi=110, format="png")
-    plt.close(fig)
+        fig.savefig(tmp, dpi=100, format="png")
 
 
 def write_results(results, out: Path) -> dict:

@@ -8,12 +8,14 @@ What is drawn (see ``docs/rendering.md``)
   edges in dark grey;
 - active blockage nodes as black dots;
 - blocking bodies translucent grey (:data:`BODY_OPACITY`, front faces only, so one layer is blended);
-- optional context surfaces (e.g. the rest of the cushion) opaque light grey;
-- the title ``t = 12.50 ms, p = 135.2 kPa`` and a one-line legend in black text on white.
+- optional context surfaces (e.g. the cavity) light grey, opaque or translucent;
+- annotated (``scalar_bar=True``, as the pictures of a run are): the title ``t = 12.50 ms, p = 135.2 kPa``, a
+  one-line legend, a scale bar and, in a strip to the right of the view, the colour bar of ``A_eb / A_e [-]``
+  (:mod:`cases.render_annotate`).
 
-Nothing but the faces is red: no colour bar is drawn by default (``scalar_bar=True`` adds one, and with it
-red pixels), so :func:`blocked_colour_fraction` of a picture is > 0 exactly when some face is (nearly)
-fully blocked. A face seen through a body is blended with the body's grey and still counts.
+Nothing but the faces is red in the 3-D view (:func:`cases.render_annotate.view_part` of an annotated picture), so
+:func:`blocked_colour_fraction` of it is > 0 exactly when some face is (nearly) fully blocked. A face seen through
+a body is blended with the body's grey and still counts.
 
 The camera is fixed: :func:`camera_for` frames the union of the bounds of the leakage surface and the bodies
 in one frame (the first one for an animation; context surfaces only on request), looking at the leakage
@@ -25,38 +27,19 @@ VTK backend uses EGL unless ``VTK_DEFAULT_OPENGL_WINDOW`` is already set. GIFs a
 """
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from cases.output import atomic_path
-from cases.render_vtk import leak_polydata, polygon_cells, write_vtk_series
-
-os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+from cases.render_plotter import FramePlotter
+from cases.render_style import (BLOCKED_RGB, BLOCKED_TOLERANCE, HALF_BLOCKED_RGB, UNBLOCKED_RGB, VIEW_ANGLE,
+                                fraction_rgb, title)
+from cases.render_vtk import polygon_cells, write_vtk_series
 
 __all__ = ["BLOCKED_RGB", "HALF_BLOCKED_RGB", "UNBLOCKED_RGB", "Frame", "blocked_colour_fraction", "camera_for",
-           "fraction_rgb", "frame_image", "render_animation", "render_frame", "title", "write_vtk_series"]
-
-UNBLOCKED_RGB = (43, 131, 186)
-"""Face colour for ``A_eb / A_e = 0`` (ColorBrewer RdYlBu blue)."""
-HALF_BLOCKED_RGB = (255, 255, 191)
-"""Face colour for ``A_eb / A_e = 0.5`` (pale yellow); linear in between."""
-BLOCKED_RGB = (215, 25, 28)
-"""Face colour for ``A_eb / A_e = 1`` (ColorBrewer RdYlBu red): "the blocked colour"."""
-BLOCKED_TOLERANCE = 70.0
-"""Euclidean RGB distance counted as "the blocked colour": fractions >= 0.88, or red behind one body layer."""
-BACKGROUND_RGB = (255, 255, 255)
-EDGE_RGB = (64, 64, 64)
-ACTIVE_NODE_RGB = (0, 0, 0)
-BODY_RGB = (128, 128, 128)
-BODY_OPACITY = 0.25
-CONTEXT_RGB = (211, 211, 211)
-VIEW_ANGLE = 30.0
-"""Vertical view angle of the camera [deg] (pyvista's default)."""
-LEGEND = "faces: blocked fraction A_eb/A_e, blue 0 - yellow 0.5 - red 1; dots: active nodes; grey: bodies"
-
+           "fraction_rgb", "frame_image", "render_animation", "render_frame", "save_png", "title", "write_vtk_series"]
 
 @dataclass(frozen=True)
 class Frame:
@@ -112,41 +95,6 @@ class Frame:
             if got != want:
                 raise ValueError(f"Frame.{name} must have shape {want}, got {got}")
         polygon_cells(self.leak_faces)  # validates the face array
-
-
-def fraction_rgb(fraction):
-    """RGB (uint8) of the fixed blocked-fraction colour scale: blue -> pale yellow -> red.
-
-    Parameters
-    ----------
-    fraction : float or (k,) float
-        ``A_eb / A_e``, clipped to [0, 1].
-
-    Returns
-    -------
-    (3,) or (k, 3) uint8
-
-    >>> fraction_rgb(0.0).tolist(), fraction_rgb(0.5).tolist(), fraction_rgb(1.0).tolist()
-    ([43, 131, 186], [255, 255, 191], [215, 25, 28])
-    """
-    anchors = np.array([UNBLOCKED_RGB, HALF_BLOCKED_RGB, BLOCKED_RGB], dtype=np.float64)
-    f = np.clip(np.asarray(fraction, dtype=np.float64), 0.0, 1.0)
-    rgb = np.stack([np.interp(f, [0.0, 0.5, 1.0], anchors[:, c]) for c in range(3)], axis=-1)
-    return np.rint(rgb).astype(np.uint8)
-
-
-def _lookup_table(n_values=256):
-    import pyvista as pv
-
-    rgba = np.full((n_values, 4), 255, dtype=np.uint8)
-    rgba[:, :3] = fraction_rgb(np.linspace(0.0, 1.0, n_values))
-    return pv.LookupTable(values=rgba, scalar_range=(0.0, 1.0))
-
-
-def _surface(vertices, faces):
-    import pyvista as pv
-
-    return pv.PolyData(np.asarray(vertices, dtype=np.float64), faces=polygon_cells(faces))
 
 
 def _face_normals(vertices, faces):
@@ -211,100 +159,24 @@ def camera_for(frame, *, include_context=False, off_normal=35.0, around=30.0):
     return [tuple(map(float, point)) for point in (centre + distance * direction, centre, up / np.linalg.norm(up))]
 
 
-def title(frame):
-    """``"t = 12.50 ms, p = 135.2 kPa"``.
-
-    >>> title(Frame(0.0125, 135.2e3, np.zeros((3, 3)), np.array([[0, 1, 2]]), np.zeros(1),
-    ...             np.zeros(3, bool), np.full(3, np.inf), ()))
-    't = 12.50 ms, p = 135.2 kPa'
-    """
-    return f"t = {frame.time * 1e3:.2f} ms, p = {frame.pressure / 1e3:.1f} kPa"
-
-
-def _closed(faces):
-    """True when every edge of the faces is shared by exactly two faces (a closed body: cull its back)."""
-    cells = np.asarray(faces, dtype=np.int64)
-    if cells.ndim != 2 or not len(cells) or (cells < 0).any():
-        return False
-    edges = np.sort(np.stack([cells, np.roll(cells, -1, axis=1)], axis=-1).reshape(-1, 2), axis=1)
-    return bool((np.unique(edges, axis=0, return_counts=True)[1] == 2).all())
-
-
-def _edge_pixels(frame, camera, window_size):
-    """Median leakage-surface edge length projected at the focal distance [px]."""
-    vertices = np.asarray(frame.leak_vertices, dtype=np.float64)
-    faces = np.asarray(frame.leak_faces, dtype=np.int64)
-    if not len(faces):
-        return 0.0
-    edge = np.median(np.linalg.norm(vertices[faces[:, 1]] - vertices[faces[:, 0]], axis=1))
-    distance = np.linalg.norm(np.subtract(camera[0], camera[1]))
-    return float(edge / (2.0 * distance * np.tan(np.radians(VIEW_ANGLE) / 2.0)) * window_size[1])
-
-
-def _draw(plotter, frame, camera, scalar_bar=False):
-    """Add the frame's actors to ``plotter``."""
-    for vertices, faces in frame.context:
-        actor = plotter.add_mesh(_surface(vertices, faces), color=CONTEXT_RGB)
-        actor.mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 4.0)  # behind a coincident vent
-    edge_pixels = _edge_pixels(frame, camera, plotter.window_size)
-    plotter.add_mesh(leak_polydata(frame), scalars="blocked_fraction", preference="cell", cmap=_lookup_table(),
-                     clim=(0.0, 1.0), lighting=False, show_edges=edge_pixels >= 8.0, edge_color=EDGE_RGB,
-                     line_width=1, show_scalar_bar=scalar_bar, interpolate_before_map=False)
-    active = np.asarray(frame.leak_vertices, dtype=np.float64)[np.asarray(frame.active_nodes, dtype=bool)]
-    if len(active):
-        plotter.add_points(active, color=ACTIVE_NODE_RGB, render_points_as_spheres=True,
-                           point_size=float(np.clip(edge_pixels / 3.0, 3.0, 10.0)))
-    for vertices, faces in frame.bodies:
-        plotter.add_mesh(_surface(vertices, faces), color=BODY_RGB, opacity=BODY_OPACITY,
-                         culling="back" if _closed(faces) else None)
-    scale = min(plotter.window_size[0] / 800.0, plotter.window_size[1] / 600.0)
-    plotter.add_text(title(frame), position="upper_edge", font_size=max(round(14 * scale), 6), color="black")
-    plotter.add_text(LEGEND, position="lower_left", font_size=max(round(9 * scale), 6), color="black")
-
-
-def _plotter(window_size):
-    import pyvista as pv
-
-    plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-    plotter.set_background(BACKGROUND_RGB)
-    return plotter
-
-
-def _snapshot(plotter, frame, camera, scalar_bar=False):
-    """Draw ``frame`` on a (reused) plotter and grab the picture as (h, w, 3) uint8."""
-    from vtkmodules.vtkRenderingCore import vtkMapper
-
-    plotter.clear_actors()
-    _draw(plotter, frame, camera, scalar_bar)
-    plotter.camera_position = camera
-    plotter.camera.view_angle = VIEW_ANGLE
-    previous = vtkMapper.GetResolveCoincidentTopology()  # a process-wide VTK setting: restore it after
-    vtkMapper.SetResolveCoincidentTopologyToPolygonOffset()
-    try:
-        plotter.render()
-        return np.asarray(plotter.screenshot(return_img=True))[..., :3].copy()
-    finally:
-        vtkMapper.SetResolveCoincidentTopology(previous)
-
-
 def frame_image(frame, *, window_size=(800, 600), camera=None, scalar_bar=False):
     """The picture of ``frame`` as an (height, width, 3) uint8 array (off screen).
 
-    ``camera`` is a pyvista camera position (default :func:`camera_for` of this frame).
+    ``camera`` is a pyvista camera position (default :func:`camera_for` of this frame). ``scalar_bar`` adds the
+    annotations (title, legend, scale bar) and the colour-bar strip (:mod:`cases.render_annotate`).
     """
-    plotter = _plotter(window_size)
-    try:
-        return _snapshot(plotter, frame, camera if camera is not None else camera_for(frame), scalar_bar)
-    finally:
-        plotter.close()
+    camera = camera if camera is not None else camera_for(frame)
+    with FramePlotter(camera, window_size, annotated=scalar_bar) as plotter:
+        return plotter.image(frame)
 
 
-def _save_png(image, path):
+def save_png(image, path):
+    """Write an (h, w, 3) uint8 picture to the PNG ``path`` atomically (fast zlib level: pictures compress well)."""
     from PIL import Image
 
     path = Path(path)
     with atomic_path(path) as tmp:
-        Image.fromarray(image).save(tmp, format="PNG")
+        Image.fromarray(image).save(tmp, format="PNG", compress_level=3)
     return path
 
 
@@ -322,16 +194,19 @@ def render_frame(frame, path, *, window_size=(800, 600), camera=None, scalar_bar
         ``[position, focal point, view up]``; default :func:`camera_for` of ``frame``. Pass the same camera
         for every time of a run so that the pictures line up.
     scalar_bar : bool
-        Add a colour bar (it contains the blocked colour, so :func:`blocked_colour_fraction` sees it).
+        Add the annotations and the colour-bar strip (it contains the blocked colour, so
+        :func:`blocked_colour_fraction` sees it; :func:`cases.render_annotate.view_part` cuts it off).
     """
-    return _save_png(frame_image(frame, window_size=window_size, camera=camera, scalar_bar=scalar_bar), path)
+    return save_png(frame_image(frame, window_size=window_size, camera=camera, scalar_bar=scalar_bar), path)
 
 
-def render_animation(frames, path, *, fps=10, window_size=(800, 600), camera=None):
+def render_animation(frames, path, *, fps=10, window_size=(800, 600), camera=None, annotated=False):
     """Render ``frames`` off screen into the animated GIF ``path`` (Pillow, looping, written atomically).
 
     The camera is fixed for the whole animation: ``camera`` or :func:`camera_for` of the first frame.
-    Consecutive identical pictures are merged by the GIF writer into one longer-lasting frame.
+    Consecutive identical pictures are merged by the GIF writer into one longer-lasting frame. One plotter draws
+    every frame (:class:`cases.render_plotter.FramePlotter`); ``annotated`` adds the title, scale bar and colour
+    bar to each.
     """
     from PIL import Image
 
@@ -342,13 +217,10 @@ def render_animation(frames, path, *, fps=10, window_size=(800, 600), camera=Non
     if not frames:
         raise ValueError("render_animation needs at least one frame")
     camera = camera if camera is not None else camera_for(frames[0])
-    plotter = _plotter(window_size)
-    try:
+    with FramePlotter(camera, window_size, annotated=annotated) as plotter:
         # quantized at once to a 256-colour palette (1 byte a pixel) to keep a long run's frames small
-        pictures = [Image.fromarray(_snapshot(plotter, frame, camera)).quantize(
-            256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE) for frame in frames]
-    finally:
-        plotter.close()
+        pictures = [Image.fromarray(plotter.image(frame)).quantize(256, method=Image.Quantize.FASTOCTREE,
+                                                                   dither=Image.Dither.NONE) for frame in frames]
     with atomic_path(path) as tmp:
         pictures[0].save(tmp, format="GIF", save_all=True, append_images=pictures[1:],
                          duration=max(round(1000.0 / fps), 20), loop=0)

@@ -13,6 +13,8 @@ from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 from .build import Model, build_model
 from .build_leak import blockage_rule
 from .contact_results import contact_columns, contact_row, contact_summary, nodal_history
+from .history_outputs import engineering_columns
+from .provenance import provenance
 from .scene import Scene, load_scene
 
 __all__ = ["Results", "run", "run_scene", "history_columns"]
@@ -182,7 +184,7 @@ def run(model: Model, *, progress: bool = False) -> Results:
                "cavities": cavity_summary(model, traj, y1, readback), "mass balance": mass_balance(model, y0, y1),
                "solver": {"method": model.options.method, "rtol": model.options.rtol, **traj.stats,
                           "wall time [s]": wall, "event log": [[t, label] for t, label in traj.events]},
-               "modelled": model.modelled}
+               "modelled": model.modelled, "ventsim": provenance(model.scene)}
     if model.geometry is not None:
         summary["blockage"] = blockage_summary(model, traj, history)
         if getattr(net, "body", None) is not None:
@@ -191,7 +193,8 @@ def run(model: Model, *, progress: bool = False) -> Results:
     if getattr(net, "contact", None) is not None:
         summary["contact"] = {net.contact.name: contact_summary(model, traj)}
         contact = nodal_history(model, traj, model.output_times)
-    return Results(model, traj, history_columns(model), history, summary, contact)
+    columns, history = engineering_columns(model, traj, history_columns(model), history)
+    return Results(model, traj, columns, history, summary, contact)
 
 
 def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dict:

@@ -11,11 +11,12 @@ from __future__ import annotations
 import csv
 import json
 import math
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
+
+from cavity.progress import ProgressBar
 
 from .output import atomic_path
 from .sweep import RESULTS_CSV, RESULTS_PARQUET, ROW
@@ -115,34 +116,21 @@ def load_records(out: Path) -> dict:
 # ------------------------------------------------------------------------------------------ progress
 
 class Progress:
-    """``sweep: 37/200 done, 1 failed, 12 finished before, 3.2 s`` on stderr (redrawn in place on a terminal)."""
+    """The sweep's progress bar (:class:`cavity.progress.ProgressBar` over the variants: done, failed, finished
+    before), shown only on a terminal."""
 
     def __init__(self, total: int, before: int, enabled: bool = True, stream=None):
-        self.total, self.before, self.enabled = total, before, enabled
-        self.stream = stream or sys.stderr
         self.done = self.failed = 0
-        self.start = self.shown = time.monotonic()
-        self.tty = self.stream.isatty()
-
-    def line(self) -> str:
-        bad = f", {self.failed} failed" if self.failed else ""
-        before = f", {self.before} finished before" if self.before else ""
-        return (f"sweep: {self.before + self.done}/{self.total} done{bad}{before}, "
-                f"{time.monotonic() - self.start:.1f} s")
+        self.bar = ProgressBar(total, desc="sweep", unit="variant", enabled=enabled, delay=0.0, stream=stream,
+                               initial=before, integer=True)
 
     def update(self, record: dict) -> None:
         self.done += 1
         self.failed += record["status"] != "ok"
-        now = time.monotonic()
-        if self.enabled and (self.tty or now - self.shown >= 10.0):
-            self.stream.write(("\r" if self.tty else "") + self.line() + ("" if self.tty else "\n"))
-            self.stream.flush()
-            self.shown = now
+        self.bar.advance(1, postfix=f"{self.failed} failed" if self.failed else None)
 
     def close(self) -> None:
-        if self.enabled and (self.done or self.before):
-            self.stream.write(("\r" if self.tty else "") + self.line() + "\n")
-            self.stream.flush()
+        self.bar.close()
 
 
 # ------------------------------------------------------------------------------------------ the picture

@@ -13,12 +13,12 @@ Two paths run the same algorithm. A system that can lower itself to arrays (``co
 from __future__ import annotations
 
 import math
-import sys
-import time as _time
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
+
+from .progress import ProgressBar
 
 __all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS"]
 
@@ -115,33 +115,6 @@ class Trajectory:
         return self.segments[-1].t_max
 
 
-class _Progress:
-    """A progress bar on stderr, shown only when a run takes longer than ``delay`` seconds."""
-
-    def __init__(self, t0, t1, enabled, delay=1.0):
-        self.t0, self.t1, self.enabled, self.delay = t0, t1, enabled, delay
-        self.start = _time.perf_counter()
-        self.shown = False
-        self.last = 0.0
-
-    def update(self, t):
-        if not self.enabled:
-            return
-        elapsed = _time.perf_counter() - self.start
-        if elapsed < self.delay or elapsed - self.last < 0.2:
-            return
-        self.last = elapsed
-        frac = (t - self.t0) / (self.t1 - self.t0) if self.t1 > self.t0 else 1.0
-        bar = "#" * int(30 * frac)
-        sys.stderr.write(f"\r[{bar:<30}] {100 * frac:5.1f}%  t = {t:.6g} s  ({elapsed:.1f} s)")
-        sys.stderr.flush()
-        self.shown = True
-
-    def close(self):
-        if self.shown:
-            sys.stderr.write("\n")
-
-
 def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progress: bool = False) -> Trajectory:
     """Integrate ``system`` from t0 to t1, stopping at its breakpoints and events.
 
@@ -166,13 +139,14 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
     if fast is not None:
         return _integrate_compiled(system, fast, y0, t0, stops, options)
     traj = Trajectory()
-    bar = _Progress(t0, t1, progress)
+    bar = ProgressBar(t1 - t0, desc="ventsim", unit="s", enabled=progress)
     t, y = float(t0), np.asarray(y0, dtype=float)
     try:
         for stop in stops:
             while t < stop:
                 t, y = _advance(system, t, y, stop, options, traj)
-                bar.update(t)
+                bar.update_to(t - t0)
+        bar.close(complete=True)
     finally:
         bar.close()
     return traj

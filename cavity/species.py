@@ -15,7 +15,7 @@ import numpy as np
 from .tolerances import R_UNIVERSAL
 
 __all__ = ["Species", "molar_heat_capacity", "molar_enthalpy", "molar_internal_energy", "species_from_coolprop",
-           "builtin_species", "BUILTIN_COOLPROP_NAMES"]
+           "fit_species_from_coolprop", "species_record", "builtin_species", "BUILTIN_COOLPROP_NAMES"]
 
 N_COEFFICIENTS = 6
 
@@ -160,6 +160,29 @@ ABAQUS_AIR = Species("air", 0.0289, (28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0)
 
 def species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple[float, float] | None = None,
                           width: float = 100.0) -> Species:
+    """:func:`fit_species_from_coolprop`, looked up first in the fit cache (:mod:`cavity.species_fits`: shipped
+    fits of the built-in species, then the user cache), which a fresh fit fills; equal to a fresh fit bit for bit."""
+    from . import species_fits
+
+    fluid = BUILTIN_COOLPROP_NAMES.get(name, name)
+    key = species_fits.fit_key(fluid, t_range, width)
+    record = species_fits.lookup(key)
+    if record is None:
+        species = fit_species_from_coolprop(name, label=label, t_range=t_range, width=width)
+        species_fits.store(key, species_record(species))
+        return species
+    return Species(label or name, record["molar_mass"], tuple(record["pieces"][0]), source=record["source"],
+                   breaks=tuple(record["breaks"]), pieces=tuple(tuple(p) for p in record["pieces"]))
+
+
+def species_record(species: Species) -> dict:
+    """The JSON-able fit of a species (molar mass, breaks, pieces, source) as the fit cache stores it."""
+    return {"molar_mass": species.molar_mass, "breaks": list(species.breaks),
+            "pieces": [list(p) for p in species.pieces], "source": species.source}
+
+
+def fit_species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple[float, float] | None = None,
+                              width: float = 100.0) -> Species:
     """A species whose cp is a piecewise cubic least-squares fit of CoolProp's ideal-gas cp0(T), made once at load.
 
     The range ``t_range`` (default: the fluid's valid range clipped to [200 K, 2000 K]) is cut into pieces of

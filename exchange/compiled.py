@@ -13,7 +13,9 @@ The arrays are described in :mod:`exchange.compiled_rhs`.
 from __future__ import annotations
 
 import importlib.util
+import logging
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -49,6 +51,7 @@ class CompiledNetwork:
         :meth:`segment_mode`."""
         from .compiled_solver import solve
 
+        _announce_compilation(solve)
         model, net = self.model, self.network
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
         eq, op, hold = model[20], model[21], model[22]
@@ -86,6 +89,19 @@ class CompiledNetwork:
     def segment_mode(self, code) -> tuple:
         """The network's snapshot during segment ``code`` of the latest :meth:`run`."""
         return self._run_modes[int(code)]
+
+
+def _announce_compilation(kernel) -> None:
+    """Log (logger ``ventsim``, level INFO: ``ventsim run`` prints it) that numba is about to compile ``kernel``
+    when this process has not compiled it and its on-disk cache is missing (the first run after installing)."""
+    if kernel.signatures:
+        return
+    cache = getattr(getattr(kernel, "_cache", None), "_cache_file", None)
+    index = getattr(cache, "_index_path", None)
+    if index is None or not os.path.exists(index):
+        logging.getLogger("ventsim").info(
+            "compiling the compiled network path with numba: the first run after installing takes about a minute "
+            "of CPU, then it is cached (%s)", os.path.dirname(index) if index else "no cache")
 
 
 def unsupported_reason(net) -> str | None:

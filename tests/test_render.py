@@ -160,7 +160,7 @@ def test_vtk_series_round_trip(tmp_path, kind):
     series = frames(kind)
     pvd = write_vtk_series(series, tmp_path / "vtk")
     assert pvd == tmp_path / "vtk" / "leakage.pvd"
-    assert sorted(p.name for p in pvd.parent.iterdir()) == ["leakage.pvd", "leakage_0000.vtp", "leakage_0001.vtp"]
+    assert sorted(p.name for p in pvd.parent.iterdir()) == ["leakage.pvd", "leakage_0000.vtu", "leakage_0001.vtu"]
     entries = ET.parse(pvd).getroot().findall("./Collection/DataSet")
     assert [float(e.get("timestep")) for e in entries] == [f.time for f in series]
     for entry, frame in zip(entries, series):
@@ -172,7 +172,7 @@ def test_vtk_series_round_trip(tmp_path, kind):
         np.testing.assert_array_equal(mesh.point_data["active"], frame.active_nodes)
         expected = np.where(np.isfinite(frame.gaps), frame.gaps, np.nan)
         np.testing.assert_array_equal(mesh.point_data["gap"], expected)  # inf written as NaN
-        np.testing.assert_array_equal(mesh.faces, polygon_cells(frame.leak_faces))
+        np.testing.assert_array_equal(mesh.cells, polygon_cells(frame.leak_faces))  # a .vtu: cells as written
     assert list(pv.get_reader(pvd).time_values) == [f.time for f in series]
 
 

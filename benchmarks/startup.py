@@ -1,0 +1,86 @@
+"""First experience: how long a new user waits, measured in fresh processes.
+
+Prints four figures (CPU time is user + system of the child process, so other engineers' load on the machine
+inflates the wall time but hardly the CPU time):
+
+1. import time of ``import ventsim`` (CPU and wall, best of 3);
+2. the main job of the README, ``ventsim run cases/airbag_impactor_dynamic.toml``, without and with ``--render``
+   (CPU, best of 2 each; the rendering cost is the difference, and the rendering phase alone as
+   ``ventsim run --verbose`` reports it: the difference also holds the noise of two whole runs);
+3. the first run of a scene on the compiled path with an empty numba cache (``NUMBA_CACHE_DIR`` pointed at an
+   empty temporary folder): numba's compilation, what the first run after installing costs; and the same scene
+   again with that cache filled.
+
+Goals (issue 17): first compilation <= 10 s, main job <= 5 s CPU, import <= 1 s.
+
+Requires: the package installed (``bash .ci/setup``). Usage::
+
+    python benchmarks/startup.py            # everything (the compilation alone takes about 1-2 min of CPU)
+    python benchmarks/startup.py --no-compile
+"""
+from __future__ import annotations
+
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+MAIN = ROOT / "cases" / "airbag_impactor_dynamic.toml"
+COMPILED = ROOT / "cases" / "verification" / "blowdown_choked.toml"
+
+
+def child(args, env=None, phase=None) -> tuple[float, float]:
+    """(CPU [s], wall [s]) of one child process running ``args``; raises if it fails. With ``phase`` (a
+    ``ventsim run --verbose`` phase, e.g. "rendered"), the CPU time that phase reports instead (wall: nan)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    out = subprocess.run(args, cwd=ROOT, env={**os.environ, **(env or {})}, capture_output=True, text=True)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if out.returncode:
+        raise RuntimeError(f"{' '.join(map(str, args))} failed:\n{out.stderr}")
+    if phase is not None:
+        line = next(l for l in out.stderr.splitlines() if l.startswith(f"ventsim: {phase} in "))
+        return float(line.split(" in ")[1].split()[0]), float("nan")
+    return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, wall
+
+
+def best(n, args, env=None, phase=None) -> tuple[float, float]:
+    runs = [child(args, env, phase) for _ in range(n)]
+    return min(r[0] for r in runs), min(r[1] for r in runs)
+
+
+def ventsim(*args) -> list:
+    return [sys.executable, "-m", "cases.cli", *map(str, args)]
+
+
+def main(argv) -> None:
+    rows = []
+    rows.append(("import ventsim", *best(3, [sys.executable, "-c", "import ventsim"])))
+    with tempfile.TemporaryDirectory() as out:
+        child(ventsim("run", MAIN, "--out", out, "--quiet"))  # warm the numba and CoolProp caches
+        plain = best(2, ventsim("run", MAIN, "--out", out, "--quiet"))
+        rendered = best(2, ventsim("run", MAIN, "--out", out, "--quiet", "--render"))
+        phase = best(2, ventsim("run", MAIN, "--out", out, "--verbose", "--render"), phase="rendered")
+    rows.append(("main job, no render", *plain))
+    rows.append(("main job, --render", *rendered))
+    rows.append(("  rendering (difference)", rendered[0] - plain[0], rendered[1] - plain[1]))
+    rows.append(("  rendering phase alone (--verbose)", *phase))
+    if "--no-compile" not in argv:
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            env = {"NUMBA_CACHE_DIR": cache}
+            rows.append(("first compiled run, empty numba cache", *child(ventsim("run", COMPILED, "--out", out,
+                                                                                 "--quiet"), env)))
+            rows.append(("same scene, cache filled", *child(ventsim("run", COMPILED, "--out", out, "--quiet"), env)))
+    print(f"{'what':<40} {'CPU [s]':>9} {'wall [s]':>9}")
+    for name, cpu, wall in rows:
+        print(f"{name:<40} {cpu:>9.2f} {wall:>9.2f}")
+    print("goals: first compilation <= 10 s, main job <= 5 s CPU, import <= 1 s")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

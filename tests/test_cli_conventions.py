@@ -1,0 +1,102 @@
+"""CLI conventions: --version, --quiet, --verbose, documented exit codes, a progress bar that is quiet off a
+terminal and ends at 100 % on one, and a message before numba compiles."""
+import io
+import logging
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import ventsim
+from cases import cli
+from cavity.integration import SolverOptions, integrate
+from exchange.compiled import _announce_compilation
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = ROOT / "cases/verification/blowdown_choked.toml"
+
+
+def ventsim_cli(*args):
+    return subprocess.run([sys.executable, "-m", "cases.cli", *map(str, args)], cwd=ROOT, capture_output=True,
+                          text=True)
+
+
+def test_version():
+    out = ventsim_cli("--version")
+    assert out.returncode == 0 and out.stdout.strip() == f"ventsim {ventsim.__version__}"
+
+
+def test_exit_codes_and_quiet_verbose(tmp_path):
+    quiet = ventsim_cli("run", SCENE, "--out", tmp_path / "q", "--quiet")
+    assert (quiet.returncode, quiet.stdout, quiet.stderr) == (cli.EXIT_OK, "", "")
+    verbose = ventsim_cli("run", SCENE, "--out", tmp_path / "v", "--verbose")
+    assert verbose.returncode == 0 and "ventsim: rendered" not in verbose.stderr
+    assert "ventsim: built and solved in" in verbose.stderr and "\r" not in verbose.stderr  # no bar in a log
+    bad = ventsim_cli("run", tmp_path / "missing.toml")
+    assert bad.returncode == cli.EXIT_BAD_INPUT and bad.stderr.count("\n") == 1
+    assert ventsim_cli("check", "no_such_case").returncode == cli.EXIT_BAD_INPUT
+    assert "exit codes: 0 success" in ventsim_cli("--help").stdout
+
+
+class Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+class Decay:
+    """dy/dt = -y, with breakpoints: the integrator's minimal system."""
+
+    breakpoints = (0.25, 0.5)
+
+    def rhs(self, t, y):
+        return -y
+
+    def events(self):
+        return []
+
+    def describe(self, t, y):
+        return ""
+
+
+@pytest.mark.parametrize("tty", [True, False])
+def test_the_integration_bar_ends_at_100_percent_on_a_terminal_and_is_silent_otherwise(monkeypatch, tty):
+    stream = Terminal() if tty else io.StringIO()
+    monkeypatch.setattr(sys, "stderr", stream)
+    monkeypatch.setattr("cavity.progress.DELAY", 0.0)  # show the bar at once
+    traj = integrate(Decay(), np.array([1.0]), 0.0, 1.0, SolverOptions(method="RK45", rtol=1e-6), progress=True)
+    assert traj(1.0)[0] == pytest.approx(np.exp(-1.0), rel=1e-4)
+    text = stream.getvalue()
+    if tty:
+        assert text.splitlines()[-1].split("\r")[-1].startswith("ventsim: 100.0%")
+    else:
+        assert text == ""
+
+
+def test_a_message_before_numba_compiles(tmp_path, monkeypatch):
+    logger, said = logging.getLogger("ventsim"), []
+    handler = logging.Handler()
+    handler.emit = lambda record: said.append(record.getMessage())
+    monkeypatch.setattr(logger, "handlers", [handler])
+    monkeypatch.setattr(logger, "level", logging.INFO)
+    missing = SimpleNamespace(signatures=[], _cache=SimpleNamespace(_cache_file=SimpleNamespace(
+        _index_path=str(tmp_path / "solve.nbi"))))
+    _announce_compilation(missing)
+    assert len(said) == 1 and "compiling the compiled network path with numba" in said[0]
+    (tmp_path / "solve.nbi").write_bytes(b"")
+    _announce_compilation(missing)  # cached on disk: nothing to say
+    _announce_compilation(SimpleNamespace(signatures=["compiled"]))  # compiled in this process
+    assert len(said) == 1
+
+
+def test_the_install_warm_up_covers_the_compiled_path_and_the_blockage_kernels():
+    from cases import warmup
+    from cases.build import build_model
+    from cases.runner import run
+    from cases.scene import load_scene
+
+    models = [build_model(load_scene(warmup.HERE / name)) for name in warmup.SCENES]
+    assert run(models[0]).trajectory.path == "compiled"
+    assert models[1].geometry is not None  # a blocked leakage surface: the blockage kernels
