@@ -13,9 +13,10 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
-__all__ = ["watched", "on_event", "record_segment"]
+__all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_intervals"]
 
 
 @njit(cache=True)
@@ -66,3 +67,32 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
         segs[nseg, 5 + j] = 1.0 if ei[j, 6] == 1 and op[j] == 1 else 0.0
         segs[nseg, 5 + ne + j] = hold[j]
         segs[nseg, 5 + 2 * ne + j] = M[23][j]
+
+
+@njit(cache=True)
+def body_switch(M, kind, j, y):
+    """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
+    of exchange j, and v/v_scale (10) (:meth:`cases.scene_areas.GeometricAreas._area_events`)."""
+    bd = M[24]
+    k = int(bd[0])
+    if kind == 10:
+        return y[k + 1] / bd[8]
+    start = M[6][M[12][j, 8], 0]  # step table: x = [−inf, crossings...]
+    i = M[23][j]
+    c = M[4][start + 1 + i] if kind == 8 else M[4][start + i]
+    return (y[k] - c) / M[13][j, 8]
+
+
+@njit(cache=True)
+def rederive_intervals(M, y):
+    """The area interval of each exchange re-derived from the body's displacement when it lies outside by more
+    than the slack (:meth:`cases.scene_areas.GeometricAreas._rederive_intervals`)."""
+    bd, ei, tx, ti, iv = M[24], M[12], M[4], M[6], M[23]
+    s = y[int(bd[0])]
+    for j in range(iv.size):
+        if ei[j, 10] != 2:
+            continue
+        start, n = ti[ei[j, 8], 0], ti[ei[j, 8], 1] - 1  # n crossings at tx[start + 1 ...]
+        i = iv[j]
+        if (i > 0 and s < tx[start + i] - bd[9]) or (i < n and s > tx[start + 1 + i] + bd[9]):
+            iv[j] = np.searchsorted(tx[start + 1:start + 1 + n], s, side="right")

@@ -20,7 +20,7 @@ from numba import njit
 from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_FACTOR, N_STAGES, RECORD, SAFETY,
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
-from .compiled_modes import on_event, record_segment, watched
+from .compiled_modes import body_switch, on_event, record_segment, rederive_intervals, watched
 from .compiled_rhs import body_rhs, network_rhs, states, switch_value
 
 OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED = 0, 1, 2, 3, 4, 5
@@ -56,35 +56,6 @@ def switches(M, kinds, js, t, y, seg_end, vals):
             vals[q] = (t - (M[22][j] + h)) / h if h > 0.0 and not math.isnan(M[22][j]) else 1.0
         else:
             vals[q] = switch_value(kinds[q], j, ei, ef, st, amb)
-
-
-@njit(cache=True)
-def body_switch(M, kind, j, y):
-    """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
-    of exchange j, and v/v_scale (10) (:meth:`cases.scene_areas.GeometricAreas._area_events`)."""
-    bd = M[24]
-    k = int(bd[0])
-    if kind == 10:
-        return y[k + 1] / bd[8]
-    start = M[6][M[12][j, 8], 0]  # step table: x = [−inf, crossings...]
-    i = M[23][j]
-    c = M[4][start + 1 + i] if kind == 8 else M[4][start + i]
-    return (y[k] - c) / M[13][j, 8]
-
-
-@njit(cache=True)
-def rederive_intervals(M, y):
-    """The area interval of each exchange re-derived from the body's displacement when it lies outside by more
-    than the slack (:meth:`cases.scene_areas.GeometricAreas._rederive_intervals`)."""
-    bd, ei, tx, ti, iv = M[24], M[12], M[4], M[6], M[23]
-    s = y[int(bd[0])]
-    for j in range(iv.size):
-        if ei[j, 10] != 2:
-            continue
-        start, n = ti[ei[j, 8], 0], ti[ei[j, 8], 1] - 1  # n crossings at tx[start + 1 ...]
-        i = iv[j]
-        if (i > 0 and s < tx[start + i] - bd[9]) or (i < n and s > tx[start + 1 + i] + bd[9]):
-            iv[j] = np.searchsorted(tx[start + 1:start + 1 + n], s, side="right")
 
 
 @njit(cache=True)
