@@ -281,10 +281,18 @@ def _body(net) -> np.ndarray:
     return np.array(body if body is not None else (-1.0,) + (0.0,) * 9, dtype=float)
 
 
+_CACHE_CHECKED = []
+
+
 def lower(net) -> CompiledNetwork | None:
     """The network as arrays for :func:`exchange.compiled_solver.solve`, or None if a part is not supported."""
     if unsupported_reason(net) is not None:
         return None
+    if not _CACHE_CHECKED:  # once per process, before numba loads a cached kernel
+        from .kernel_cache import purge_stale
+
+        purge_stale()
+        _CACHE_CHECKED.append(True)
     gas = net.gas
     per_range, linear = gas._per_range
     rows = np.array(per_range, dtype=float).transpose(1, 0, 2).copy()  # (ns, nr, 7)

@@ -1,0 +1,46 @@
+"""Keep numba's on-disk cache of the compiled network path consistent with its sources.
+
+numba's ``cache=True`` checks only the source file of each cached function, not the kernels it inlines from
+other modules (``inline="always"`` helpers of :mod:`exchange.compiled_rhs` live in every caller's machine code):
+after an edit or an update of one of those modules, a stale cached caller runs old code against new arrays (seen
+as a ZeroDivisionError). :func:`purge_stale` keeps a digest of all the compiled modules' sources beside their cache
+and drops every cached kernel of the path when the digest changes; numba then compiles afresh once.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+__all__ = ["purge_stale", "kernel_sources"]
+
+HERE = Path(__file__).resolve().parent
+STAMP = "ventsim_kernels.sha256"
+
+
+def kernel_sources() -> list:
+    """The modules whose numba kernels call each other (the compiled network path)."""
+    return sorted(HERE.glob("compiled*.py")) + [HERE.parent / "cavity" / "rk_compiled.py"]
+
+
+def purge_stale() -> bool:
+    """Drop the cached kernels of the compiled path when their sources changed since they were cached; True when
+    it purged. Nothing is done when numba caches elsewhere (``NUMBA_CACHE_DIR``) or the folder is read-only."""
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return False
+    sources = kernel_sources()
+    digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources if p.is_file())).hexdigest()
+    folders = sorted({p.parent / "__pycache__" for p in sources})
+    stamp = folders[0] / STAMP
+    try:
+        if stamp.is_file() and stamp.read_text().strip() == digest:
+            return False
+        for folder in folders:
+            for cached in list(folder.glob("*.nbi")) + list(folder.glob("*.nbc")):
+                if cached.name.split(".")[0] in {p.stem for p in sources}:
+                    cached.unlink(missing_ok=True)
+        folders[0].mkdir(exist_ok=True)
+        stamp.write_text(digest + "\n")
+    except OSError:
+        return False
+    return True
