@@ -19,7 +19,6 @@ import numpy as np
 
 from cavity.cavity import CavityState
 from .activation import activated_area
-from .orifice import critical_pressure_ratio
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
@@ -46,6 +45,10 @@ def _labelled(func, label):
 
 def gas_point(state) -> GasPoint:
     """The flow-law view of a cavity state (a liquid has no R, γ or enthalpy: NaN, NaN, 0)."""
+    if getattr(state, "fluid", None) is not None:  # real gas
+        from .realgas_orifice import real_gas_point
+
+        return real_gas_point(state)
     mix, T = state.mixture, state.temperature
     if mix is None:  # hydraulic
         return GasPoint(state.pressure, T, state.density, math.nan, math.nan, 0.0, _LIQUID)
@@ -146,8 +149,14 @@ class Network:
         """The gas state of every cavity at (t, y)."""
         out = []
         for i, (cav, k) in enumerate(zip(self.cavities, self.offsets)):
-            if getattr(cav, "kind", "gas") == "hydraulic":
+            kind = getattr(cav, "kind", "gas")
+            if kind == "hydraulic":
                 out.append(cav.state(t, y[k:k + 1]))
+                continue
+            if kind == "realgas":
+                s = cav.state(t, y[k:k + cav.n_unknowns], self._T_guess[i])
+                self._T_guess[i] = s.temperature
+                out.append(s)
                 continue
             s = CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i])
             self._T_guess[i] = s.temperature
@@ -218,10 +227,14 @@ class Network:
                     if not cav.isothermal:
                         dy[k + ns] += hdot
             if not cav.isothermal:
-                work, heat = s.pressure * s.volume_rate, cav.heat_loss(s.temperature)
+                extra = getattr(s, "extra_rates", None)
+                work = s.pressure * s.volume_rate
+                heat = cav.heat_loss(s.temperature) if extra is None else s.heat_out
                 dy[k + ns] -= work + heat
                 dy[c + 2] += work
                 dy[c + 3] += heat
+                if extra:  # a real-gas cavity's wall: temperature, heat to ambient
+                    dy[k + ns + 1:k + ns + 1 + len(extra)] = extra
         for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, self.exchange_flows(t, states))):
             if mdot == 0.0:
                 continue
@@ -318,7 +331,7 @@ class Network:
         else:
             hi, lo = pb, pa
             point = self._ambient_point if ex.downstream is None else gas_point(states[ex.downstream])
-        return (lo - critical_pressure_ratio(point.gamma) * hi) / hi
+        return (lo - point.choke_ratio() * hi) / hi
 
     def _pop_switch(self, t, y, j):
         _, pa, pb = self._pressures(t, y, j)

@@ -1,0 +1,154 @@
+"""A cavity (a stored-gas tank, a test vessel) whose gas follows a real-gas equation of state.
+
+Unknowns: the species masses [kg] (one species carries the fluid), the internal energy U [J] and, with a wall,
+the wall temperature T_w [K] and the heat the wall gave to the ambient ∫Q_out dt [J] (a ledger entry: it closes
+the wall's books, m_w c_w (T_w − T_w0) = ∫Q_in − ∫Q_out, to round-off). The gas balance is the one of
+:mod:`cavity.cavity`:
+
+    dU/dt = Σ ṁ_in h_in − Σ ṁ_out h_out − p dV/dt − Q,
+
+with Q = h_c A (T − T_amb) (``heat_loss``) or Q = Q_in to the wall (``wall``, :mod:`cavity.wall`). The state is
+(ρ, u) = (m/V, U/m) → T by Newton on the equation of state, then p, h, c (:mod:`cavity.realgas`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["RealGasCavity", "RealGasState", "REAL_GAS_ENERGY_MODELS"]
+
+REAL_GAS_ENERGY_MODELS = ("adiabatic", "heat_loss", "wall")
+
+
+class _RealMixture:
+    """The few mixture quantities the network and outputs read: mass [kg], an effective gas constant
+    p/(ρT) [J/(kg K)] and, as γ, the isentropic exponent κ = ρc²/p [-] (used by laws that are not real-gas)."""
+
+    __slots__ = ("mass", "gas_constant", "kappa", "moles")
+
+    def __init__(self, mass, gas_constant, kappa, moles):
+        self.mass, self.gas_constant, self.kappa, self.moles = mass, gas_constant, kappa, moles
+
+    def gamma(self, T: float) -> float:
+        return self.kappa
+
+
+@dataclass(frozen=True)
+class RealGasCavity:
+    """Definition of a real-gas cavity.
+
+    Attributes
+    ----------
+    name : str
+    volume : volume model (``__call__(t)``, ``rate(t)``, ``breakpoints``) [m^3]
+    fluid : cavity.realgas.RealFluid
+    initial_masses : (ns,) float
+        [kg]; only entry ``species_index`` is non-zero.
+    species_index : int
+        The scene species that is this fluid.
+    initial_temperature : float
+        [K].
+    energy : str
+        ``"adiabatic"``, ``"heat_loss"`` or ``"wall"``.
+    heat_transfer_coefficient, heat_transfer_area : float
+        heat_loss: h_c [W/(m^2 K)], A [m^2].
+    ambient_temperature : float
+        [K].
+    wall : cavity.wall.Wall or None
+        energy ``"wall"``.
+    added_volume, minimum_volume : float
+        [m^3].
+    inflators : tuple
+    """
+
+    name: str
+    volume: object
+    fluid: object
+    initial_masses: tuple
+    species_index: int
+    initial_temperature: float
+    energy: str = "adiabatic"
+    heat_transfer_coefficient: float = 0.0
+    heat_transfer_area: float = 0.0
+    ambient_temperature: float = 293.15
+    wall: object = None
+    added_volume: float = 0.0
+    minimum_volume: float = 0.0
+    inflators: tuple = ()
+    kind = "realgas"
+    isothermal = False
+
+    @property
+    def n_unknowns(self) -> int:
+        return len(self.initial_masses) + (3 if self.wall is not None else 1)
+
+    def total_volume(self, t: float) -> float:
+        return self.volume(t) + self.added_volume
+
+    def initial_unknowns(self, gas=None) -> np.ndarray:
+        m = np.asarray(self.initial_masses, dtype=float)
+        V = max(self.total_volume(0.0), self.minimum_volume)
+        total = float(m.sum())
+        U = total * self.fluid.at(total / V, self.initial_temperature).u
+        extra = [U] + ([self.wall.initial_temperature, 0.0] if self.wall is not None else [])
+        return np.append(m, extra)
+
+    @property
+    def breakpoints(self) -> tuple:
+        return tuple(self.volume.breakpoints) + tuple(b for inf in self.inflators for b in inf.breakpoints)
+
+    def heat_loss(self, T: float) -> float:
+        """h_c·A·(T − T_amb) [W] for ``heat_loss``; 0 otherwise (the wall's heat is in the state)."""
+        if self.energy != "heat_loss":
+            return 0.0
+        return self.heat_transfer_coefficient * self.heat_transfer_area * (T - self.ambient_temperature)
+
+    def state(self, t: float, unknowns, T_guess: float) -> "RealGasState":
+        """The state at t from this cavity's slice of the unknowns (masses clipped at 0 for the equation of
+        state)."""
+        ns = len(self.initial_masses)
+        masses = np.maximum(unknowns[:ns], 0.0)
+        m = float(masses.sum())
+        V = self.volume(t) + self.added_volume
+        V_eos = V if V > self.minimum_volume else self.minimum_volume
+        rate = self.volume.rate(t) if V > self.minimum_volume else 0.0
+        fluid = self.fluid
+        rho = m / V_eos
+        T = fluid.temperature(rho, float(unknowns[ns]) / m, T_guess) if m > 0.0 else T_guess
+        pt = fluid.at(rho, T) if m > 0.0 else None
+        p = pt[0] if pt is not None else 0.0
+        kappa = rho * pt[4] ** 2 / p if pt is not None else 1.4
+        R = p / (rho * T) if pt is not None else 1.0
+        mix = _RealMixture(m, R, kappa, m / fluid.molar_mass)
+        s = RealGasState(masses, mix, T, V, rate, p, rho, pt[2] if pt is not None else 0.0, fluid)
+        if self.wall is not None:
+            T_w = float(unknowns[ns + 1])
+            q_in, q_out = self.wall.heat_flows(fluid, p, T, T_w) if m > 0.0 else (0.0, 0.0)
+            s.wall_temperature, s.heat_out = T_w, q_in
+            s.extra_rates = ((q_in - q_out) / self.wall.thermal_mass, q_out)
+        else:
+            s.heat_out = self.heat_loss(T)
+        return s
+
+
+@dataclass(slots=True)
+class RealGasState:
+    """The state of a real-gas cavity at one instant.
+
+    ``heat_out``: heat leaving the gas [W]; ``extra_rates``: d/dt of the unknowns after U (wall temperature
+    [K/s], heat to ambient [W]); ``wall_temperature`` [K] (NaN without a wall)."""
+
+    masses: np.ndarray
+    mixture: _RealMixture
+    temperature: float
+    volume: float
+    volume_rate: float
+    pressure: float
+    density: float
+    specific_enthalpy: float
+    fluid: object
+    heat_out: float = 0.0
+    extra_rates: tuple = ()
+    wall_temperature: float = math.nan
