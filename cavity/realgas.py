@@ -1,8 +1,8 @@
 """Real-gas equation of state: a CoolProp HEOS fluid evaluated at (density, temperature), state from (ρ, u).
 
 The Helmholtz-energy equations of state behind CoolProp's ``HEOS`` backend are explicit in (ρ, T): an update
-with ``DmassT_INPUTS`` evaluates them directly (no flash), in about 3 µs on the reference machine (MEASURED in
-``docs/realgas.md``), and p, u, h, s, c, cv and ∂p/∂T|ρ are then getters of 0.1 µs. The state of a rigid cavity
+with ``DmassT_INPUTS`` evaluates them directly (no flash), in about 3 µs on the reference machine (measured in
+``docs/realgas.md``), and p, u, h, s, c and cv are then getters of 0.1 µs. The state of a rigid cavity
 of mass m, internal energy U and volume V is found by Newton's method on T at fixed ρ = m/V:
 
     u(ρ, T) = U/m,     ∂u/∂T|ρ = cv > 0,
@@ -37,7 +37,7 @@ IDEAL_LIMIT_DENSITY = 1e-6
 
 
 class FluidPoint(tuple):
-    """(p [Pa], u [J/kg], h [J/kg], s [J/(kg K)], c [m/s], cv [J/(kg K)], ∂p/∂T|ρ [Pa/K]) at one (ρ, T)."""
+    """(p [Pa], u [J/kg], h [J/kg], s [J/(kg K)], c [m/s], cv [J/(kg K)]) at one (ρ, T)."""
 
     __slots__ = ()
     p = property(lambda self: self[0])
@@ -46,7 +46,6 @@ class FluidPoint(tuple):
     s = property(lambda self: self[3])
     c = property(lambda self: self[4])
     cv = property(lambda self: self[5])
-    dpdT = property(lambda self: self[6])
 
 
 class RealFluid:
@@ -77,7 +76,6 @@ class RealFluid:
         self._state = CP.AbstractState("HEOS", coolprop_name)
         self._film = CP.AbstractState("HEOS", coolprop_name)
         self._DT, self._PT = CP.DmassT_INPUTS, CP.PT_INPUTS
-        self._iP, self._iT, self._iD = CP.iP, CP.iT, CP.iDmass
         self.molar_mass = self._state.molar_mass()
         self.offset = 0.0
         if ideal_enthalpy is not None:
@@ -93,8 +91,7 @@ class RealFluid:
         st = self._state
         st.update(self._DT, rho, T)
         off = self.offset
-        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), st.speed_sound(), st.cvmass(),
-                           st.first_partial_deriv(self._iP, self._iT, self._iD)))
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), st.speed_sound(), st.cvmass()))
 
     def density(self, p: float, T: float) -> float:
         """Density [kg/m^3] at pressure p [Pa] and temperature T [K] (a CoolProp flash, for initial states)."""
@@ -102,8 +99,8 @@ class RealFluid:
         return self._film.rhomass()
 
     def temperature(self, rho: float, u: float, T_guess: float) -> float:
-        """:func:`temperature_from_energy` of this fluid."""
-        return temperature_from_energy(self, rho, u, T_guess)
+        """The temperature [K] of :func:`temperature_from_energy` of this fluid."""
+        return temperature_from_energy(self, rho, u, T_guess)[0]
 
     def film_properties(self, p: float, T: float) -> tuple:
         """(ρ [kg/m^3], cp [J/(kg K)], μ [Pa s], k [W/(m K)], β [1/K]) at p [Pa], T [K], for convection
@@ -113,8 +110,9 @@ class RealFluid:
         return st.rhomass(), st.cpmass(), st.viscosity(), st.conductivity(), st.isobaric_expansion_coefficient()
 
 
-def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> float:
-    r"""Temperature [K] at which ``fluid`` of density ρ has specific internal energy u, by Newton's method.
+def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> tuple:
+    r"""Temperature [K] at which ``fluid`` of density ρ has specific internal energy u, by Newton's method, and
+    the fluid there (a :class:`FluidPoint`).
 
     .. math:: T_{k+1} = T_k - \frac{u(\rho, T_k) - u}{c_v(\rho, T_k)}
 
@@ -131,50 +129,49 @@ def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> floa
     Notes
     -----
     u is strictly increasing in T at fixed ρ outside the two-phase dome (cv > 0), so the iteration converges
-    from a nearby guess; steps are limited to halve T at most.
+    from a nearby guess; steps are limited to halve T at most. It stops when the next step would be below
+    1e-13·T and returns the last point evaluated.
 
     Examples
     --------
     >>> f = RealFluid("Helium")
-    >>> round(temperature_from_energy(f, 30.0, f.at(30.0, 80.0).u, 300.0), 9)
+    >>> round(temperature_from_energy(f, 30.0, f.at(30.0, 80.0).u, 300.0)[0], 9)
     80.0
     """
     T = T_guess
     for _ in range(NEWTON_MAX):
         pt = fluid.at(rho, T)
-        T_new = T - (pt[1] - u) / pt[5]
-        if T_new < 0.5 * T:
-            T_new = 0.5 * T
-        if abs(T_new - T) <= NEWTON_RTOL * T_new:
-            return T_new
-        T = T_new
+        step = (pt[1] - u) / pt[5]
+        if abs(step) <= NEWTON_RTOL * T:
+            return T, pt
+        T = T - step if step < 0.5 * T else 0.5 * T
     raise RealGasSolveError(f"{getattr(fluid, 'name', fluid)}: no temperature for rho = {rho!r} kg/m^3, "
                             f"u = {u!r} J/kg (last T = {T!r} K)")
 
 
-def isentrope_temperature(fluid, rho: float, s: float, T_guess: float) -> float:
-    r"""Temperature [K] of ``fluid`` at density ρ on the isentrope of specific entropy s [J/(kg K)].
+def isentrope_temperature(fluid, rho: float, s: float, T_guess: float) -> tuple:
+    r"""Temperature [K] of ``fluid`` at density ρ on the isentrope of specific entropy s [J/(kg K)], and the
+    fluid there (a :class:`FluidPoint`).
 
     .. math:: T_{k+1} = T_k - \frac{s(\rho, T_k) - s}{c_v(\rho, T_k)/T_k}
 
-    (∂s/∂T|ρ = cv/T). Same convergence and limits as :func:`temperature_from_energy`.
+    (∂s/∂T|ρ = cv/T). It stops when the next step would be below 1e-13·T and returns the last point evaluated
+    (its T is then exact to that level). Limits as :func:`temperature_from_energy`.
 
     Examples
     --------
     >>> f = RealFluid("Nitrogen")
     >>> s0 = f.at(300.0, 300.0).s
-    >>> round(isentrope_temperature(f, 300.0, s0, 200.0), 9)
+    >>> round(isentrope_temperature(f, 300.0, s0, 200.0)[0], 9)
     300.0
     """
     T = T_guess
     for _ in range(NEWTON_MAX):
         pt = fluid.at(rho, T)
-        T_new = T - (pt[3] - s) * T / pt[5]
-        if T_new < 0.5 * T:
-            T_new = 0.5 * T
-        if abs(T_new - T) <= NEWTON_RTOL * T_new:
-            return T_new
-        T = T_new
+        step = (pt[3] - s) * T / pt[5]
+        if abs(step) <= NEWTON_RTOL * T:
+            return T, pt
+        T = T - step if step < 0.5 * T else 0.5 * T
     raise RealGasSolveError(f"{getattr(fluid, 'name', fluid)}: no isentrope temperature for rho = {rho!r} "
                             f"kg/m^3, s = {s!r} J/(kg K) (last T = {T!r} K)")
 
@@ -200,4 +197,4 @@ class IdealGasFluid:
     def at(self, rho: float, T: float) -> FluidPoint:
         R, cv = self.R, self.cv
         return FluidPoint((rho * R * T, cv * T, (cv + R) * T, cv * math.log(T) - R * math.log(rho),
-                           math.sqrt(self.gamma * R * T), cv, rho * R))
+                           math.sqrt(self.gamma * R * T), cv))

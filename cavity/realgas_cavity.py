@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .realgas import temperature_from_energy
+
 __all__ = ["RealGasCavity", "RealGasState", "REAL_GAS_ENERGY_MODELS"]
 
 REAL_GAS_ENERGY_MODELS = ("adiabatic", "heat_loss", "wall")
@@ -116,8 +118,7 @@ class RealGasCavity:
         rate = self.volume.rate(t) if V > self.minimum_volume else 0.0
         fluid = self.fluid
         rho = m / V_eos
-        T = fluid.temperature(rho, float(unknowns[ns]) / m, T_guess) if m > 0.0 else T_guess
-        pt = fluid.at(rho, T) if m > 0.0 else None
+        T, pt = temperature_from_energy(fluid, rho, float(unknowns[ns]) / m, T_guess) if m > 0.0 else (T_guess, None)
         p = pt[0] if pt is not None else 0.0
         kappa = rho * pt[4] ** 2 / p if pt is not None else 1.4
         R = p / (rho * T) if pt is not None else 1.0

@@ -29,10 +29,7 @@ SECANT_RTOL = 1e-13
 SECANT_MAX = 40
 
 
-def _throat(fluid, rho, s0, T_guess):
-    """(T, FluidPoint) on the isentrope s0 at density rho."""
-    T = isentrope_temperature(fluid, rho, s0, T_guess)
-    return T, fluid.at(rho, T)
+_throat = isentrope_temperature  # (T, FluidPoint) on the isentrope s0 at density rho
 
 
 def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
@@ -67,15 +64,23 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     """
     st0 = fluid.at(rho0, T0)
     h0, s0 = st0[2], st0[3]
-    kappa = rho0 * st0[4] ** 2 / st0[0]
-    rho_a = rho0 * (2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0))
-    T_a, pa = _throat(fluid, rho_a, s0, T0 * 2.0 / (kappa + 1.0))
+    last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0) of the previous call: a warm start
+    if last is None:
+        kappa = rho0 * st0[4] ** 2 / st0[0]
+        last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)), 2.0 / (kappa + 1.0))
+    rho_a = rho0 * last[0]
+    T_a, pa = _throat(fluid, rho_a, s0, T0 * last[1])
     f_a = 2.0 * (h0 - pa[2]) - pa[4] ** 2
-    rho_b = rho_a * (1.0 + 1e-4)
+    rho_b = rho_a * (1.0 + 1e-6)
     T_b, pb = _throat(fluid, rho_b, s0, T_a)
     f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
+    # below 1e-12 c², f is at the level of the isentrope's Newton tolerance: ρ is then the root to ~4e-13, and
+    # G = ρv, stationary there, to ~1e-25
+    noise = 1e-12 * pa[4] ** 2
+    if abs(f_a) <= noise:
+        rho_b, T_b, pb, f_b = rho_a, T_a, pa, f_a
     for _ in range(SECANT_MAX):
-        if f_b == f_a or abs(rho_b - rho_a) <= SECANT_RTOL * rho_b:
+        if f_b == f_a or abs(f_b) <= noise or abs(rho_b - rho_a) <= SECANT_RTOL * rho_b:
             break
         rho_n = rho_b - f_b * (rho_b - rho_a) / (f_b - f_a)
         rho_a, T_a, f_a = rho_b, T_b, f_b
@@ -83,6 +88,7 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
         T_b, pb = _throat(fluid, rho_b, s0, T_a)
         f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
     v = math.sqrt(max(2.0 * (h0 - pb[2]), 0.0))
+    fluid.last_choke = (rho_b / rho0, T_b / T0)
     return pb[0], rho_b * v, rho_b, T_b
 
 
@@ -99,8 +105,8 @@ def _enthalpy_drop(fluid, rho0, T0, s0, rho_t, T_t):
     half, mid, total = 0.5 * (rho0 - rho_t), 0.5 * (rho0 + rho_t), 0.0
     for x, w in _GAUSS4:
         rho = mid + half * x
-        T = isentrope_temperature(fluid, rho, s0, T_t + (T0 - T_t) * (rho - rho_t) / (rho0 - rho_t))
-        total += w * fluid.at(rho, T)[4] ** 2 / rho
+        pt = isentrope_temperature(fluid, rho, s0, T_t + (T0 - T_t) * (rho - rho_t) / (rho0 - rho_t))[1]
+        total += w * pt[4] ** 2 / rho
     return half * total
 
 

@@ -1,0 +1,20 @@
+"""Run HydDown on one set-up file and print its history as JSON (run with HydDown's own interpreter).
+
+Requires: hyddown (a separate venv: ``python3 -m venv /work/venv-hyddown && /work/venv-hyddown/bin/pip install
+hyddown``). Usage: ``python _hyddown_run.py SETUP.yml`` -> {"wall time [s]", "time", "p", "T", "T_wall"}.
+"""
+import json
+import sys
+import time
+
+import yaml
+from hyddown import HydDown
+
+setup = yaml.safe_load(open(sys.argv[1]))
+setup.pop("validation", None)
+start = time.perf_counter()
+hd = HydDown(setup)
+hd.run()
+wall = time.perf_counter() - start
+print(json.dumps({"wall time [s]": wall, "time": list(map(float, hd.time_array)), "p": list(map(float, hd.P)),
+                  "T": list(map(float, hd.T_fluid)), "T_wall": list(map(float, hd.T_vessel))}))
