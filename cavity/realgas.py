@@ -91,7 +91,12 @@ class RealFluid:
         st = self._state
         st.update(self._DT, rho, T)
         off = self.offset
-        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), st.speed_sound(), st.cvmass()))
+        try:
+            c = st.speed_sound()
+        except ValueError:
+            raise RealGasSolveError(f"{self.name} at rho = {rho!r} kg/m^3, T = {T!r} K is two-phase: a real-gas "
+                                    "cavity holds a single-phase fluid") from None
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
 
     def density(self, p: float, T: float) -> float:
         """Density [kg/m^3] at pressure p [Pa] and temperature T [K] (a CoolProp flash, for initial states)."""
