@@ -10,7 +10,7 @@ probes; the wall against the mean of the inner and outer probes), the minimum ga
 measured, and wall times: ventsim build + run (best of 3, CoolProp's fluid loaded once beforehand) and HydDown's
 HydDown(setup) + run() (best of 2, in its own interpreter). HydDown runs when an interpreter that imports it is
 found (HYDDOWN_PYTHON, /work/venv-hyddown/bin/python, or this one); its rows are skipped otherwise. Plots of
-measured against computed p and T (and wall T) go to OUT/validation.png.
+measured against computed p and T (and wall T) go to OUT/validation.png (default out/benchmarks).
 
 Requires: numpy, matplotlib; HydDown optional (a separate venv: python3 -m venv /work/venv-hyddown &&
 /work/venv-hyddown/bin/pip install hyddown).
@@ -146,7 +146,7 @@ def plot(results: list, out: Path) -> Path:
 
 def main(argv=None) -> int:
     args = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    args.add_argument("--out", default=str(ROOT / "benchmarks" / "out"))
+    args.add_argument("--out", default=str(ROOT / "out" / "benchmarks"))
     out = Path(args.parse_args(argv).out)
     out.mkdir(parents=True, exist_ok=True)
     print(__doc__.split("\n")[0])
