@@ -208,18 +208,22 @@ def _cavity(scene: Scene, gas: GasModel, i: int, geo=None):
     if c.fluid == "real_gas":
         from .build_realgas import real_gas_cavity
 
-        return real_gas_cavity(scene, gas, i, volume, tuple(_inflator(gas, inf) for inf in c.inflator))
+        return real_gas_cavity(scene, gas, i, volume, tuple(_inflator(gas, inf, scene) for inf in c.inflator))
     y = gas.mass_fractions(c.gas, molar=c.gas_by_mole)
     V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
     masses = gas.masses_at(y, c.pressure, c.temperature, V0)
-    inflators = tuple(_inflator(gas, inf) for inf in c.inflator)
+    inflators = tuple(_inflator(gas, inf, scene) for inf in c.inflator)
     return Cavity(c.name, volume, tuple(masses), c.temperature, c.energy, c.added_volume, c.minimum_volume,
                   c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, inflators)
 
 
-def _inflator(gas: GasModel, inf):
+def _inflator(gas: GasModel, inf, scene: Scene | None = None):
     y = gas.mass_fractions(inf.gas, molar=inf.gas_by_mole)
     mix = gas.mixture(y)  # 1 kg of inflator gas
+    if inf.type == "tank_test" and inf.tank_gas == "real_gas":
+        from .build_realgas import real_gas_tank_test
+
+        return real_gas_tank_test(scene, inf, tuple(y), mix)
     if inf.type == "mass_temperature":
         return MassTemperatureInflator(inf.name, inf.mass_flow, inf.temperature, tuple(y), mix, inf.start, inf.scale)
     if inf.type == "tank_test":

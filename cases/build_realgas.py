@@ -6,7 +6,9 @@ from dataclasses import replace
 import numpy as np
 
 from cavity.gas import GasModel
+from cavity.inflator_realgas import RealGasTankTestInflator, real_gas_tank_masses
 from cavity.realgas import RealFluid
+from cavity.tables import Table
 from cavity.realgas_cavity import RealGasCavity
 from cavity.wall import Wall
 from exchange.laws import OrificeLaw
@@ -15,7 +17,7 @@ from exchange.realgas_orifice import RealGasOrificeLaw
 from .errors import SceneError
 from .scene_realgas import coolprop_name
 
-__all__ = ["real_gas_cavity", "real_gas_laws"]
+__all__ = ["real_gas_cavity", "real_gas_laws", "real_gas_tank_test"]
 
 def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> RealGasCavity:
     """The :class:`RealGasCavity` of ``scene.cavity[i]`` (initial mass from HEOS density at p, T)."""
@@ -50,3 +52,14 @@ def real_gas_laws(exchanges: tuple, cavities: tuple) -> tuple:
     return tuple(replace(ex, law=RealGasOrificeLaw(ex.law.discharge_coefficient))
                  if type(ex.law) is OrificeLaw and ({ex.upstream, ex.downstream} & real) else ex
                  for ex in exchanges)
+
+
+def real_gas_tank_test(scene, inf, mass_fractions: tuple, mix) -> RealGasTankTestInflator:
+    """A tank-test inflator whose tank holds the inflator's one species as a real gas (HEOS)."""
+    name = next(k for k, v in inf.gas.items() if v > 0)
+    table = inf.tank_pressure
+    fluid = RealFluid(coolprop_name(scene, name))
+    masses = real_gas_tank_masses(fluid, inf.tank_volume, table.x, table.y, inf.tank_temperature, inf.temperature)
+    delivered = Table(table.x, tuple(m - masses[0] for m in masses), "delivered mass [kg]")
+    return RealGasTankTestInflator(inf.name, table, inf.tank_volume, inf.temperature, mass_fractions, mix, delivered,
+                                   inf.start, inf.scale)

@@ -82,6 +82,10 @@ class InflatorSpec:
     gas_by_mole: bool = key("fractions in `gas` are molar", default=False)
     start: float = key("activation time; tables are relative to it", "s", default=0.0, check="nonnegative")
     scale: float = key("multiplier on the mass flow", default=1.0, check="nonnegative")
+    tank_gas: str = key("tank_test: the tank's gas, 'ideal' (ṁ = V·ṗ/(γ·R·T_in)) or 'real_gas' (CoolProp HEOS of "
+                        "the inflator's one species, docs/realgas.md)", default="ideal", choices=("ideal", "real_gas"))
+    tank_temperature: float = key("tank_test with tank_gas = 'real_gas': initial tank temperature", "K",
+                                  default=0.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -348,7 +352,8 @@ def scene_from_dict(data: dict, path) -> Scene:
     })
     scene = replace(scene, _path=str(path))
     check_cross_references(scene, path)
-    if any(c.fluid == "real_gas" or c.energy == "wall" for c in scene.cavity):
+    if any(c.fluid == "real_gas" or c.energy == "wall" or any(i.tank_gas == "real_gas" for i in c.inflator)
+           for c in scene.cavity):
         from .scene_realgas import check_real_gas
 
         check_real_gas(scene)

@@ -31,6 +31,9 @@ def check_real_gas(scene) -> None:
     real = {c.name: c for c in scene.cavity if c.fluid == "real_gas"}
     for i, c in enumerate(scene.cavity):
         where = f"cavity[{i}]"
+        for j, inf in enumerate(c.inflator):
+            if inf.tank_gas == "real_gas":
+                _check_real_tank(scene, inf, f"{where}.inflator[{j}]")
         if c.fluid != "real_gas":
             if c.energy == "wall":
                 raise SceneError(scene.path, f"{where}.energy", "energy = 'wall' needs fluid = 'real_gas'")
@@ -59,3 +62,13 @@ def check_real_gas(scene) -> None:
             if _species(gas) != _species(real[into].gas):
                 raise SceneError(scene.path, f"exchange[{j}]", f"gas flowing into the real_gas cavity {into!r} "
                                  f"must be its own fluid (the {other} gas differs)")
+
+
+def _check_real_tank(scene, inf, where: str) -> None:
+    gas = sorted(_species(inf.gas))
+    if inf.type != "tank_test":
+        raise SceneError(scene.path, f"{where}.tank_gas", "only a tank_test inflator has a real-gas tank")
+    if len(gas) != 1 or not coolprop_name(scene, gas[0]):
+        raise SceneError(scene.path, f"{where}.gas", "a real-gas tank holds one species with a CoolProp name")
+    if not inf.tank_temperature:
+        raise SceneError(scene.path, f"{where}.tank_temperature", "required (> 0) for tank_gas = 'real_gas'")

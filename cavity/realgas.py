@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["RealFluid", "IdealGasFluid", "FluidPoint", "temperature_from_energy", "isentrope_temperature",
+__all__ = ["RealFluid", "IdealGasFluid", "FluidPoint", "temperature_from_energy", "isentrope_temperature", "IDEAL_LIMIT_DENSITY",
            "RealGasSolveError"]
 
 
