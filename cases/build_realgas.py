@@ -39,9 +39,9 @@ def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> R
         wall = Wall(c.wall_mass, c.wall_heat_capacity, c.wall_inner_area, c.wall_outer_area or c.wall_inner_area,
                     c.wall_inner_h, c.wall_outer_h, c.wall_length, c.wall_temperature or c.temperature,
                     scene.ambient.temperature)
-    return RealGasCavity(c.name, volume, fluid, tuple(masses), k, c.temperature, c.energy,
-                         c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, wall,
-                         c.added_volume, c.minimum_volume, inflators)
+    return RealGasCavity(c.name, volume, tuple(masses), c.temperature, c.energy, c.added_volume, c.minimum_volume,
+                         c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, inflators,
+                         fluid=fluid, species_index=k, wall=wall)
 
 
 def real_gas_laws(exchanges: tuple, cavities: tuple) -> tuple:
@@ -61,5 +61,5 @@ def real_gas_tank_test(scene, inf, mass_fractions: tuple, mix) -> RealGasTankTes
     fluid = RealFluid(coolprop_name(scene, name))
     masses = real_gas_tank_masses(fluid, inf.tank_volume, table.x, table.y, inf.tank_temperature, inf.temperature)
     delivered = Table(table.x, tuple(m - masses[0] for m in masses), "delivered mass [kg]")
-    return RealGasTankTestInflator(inf.name, table, inf.tank_volume, inf.temperature, mass_fractions, mix, delivered,
-                                   inf.start, inf.scale)
+    return RealGasTankTestInflator(inf.name, table, inf.tank_volume, inf.temperature, mass_fractions, mix,
+                                   inf.start, inf.scale, delivered=delivered)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .inflator import scheduled_breakpoints
+from .inflator import TankTestInflator
 from .realgas import IDEAL_LIMIT_DENSITY, temperature_from_energy
 from .tables import Table
 
@@ -105,32 +105,16 @@ def real_gas_tank_masses(fluid, tank_volume: float, times, pressures, tank_tempe
 
 
 @dataclass(frozen=True)
-class RealGasTankTestInflator:
-    """A tank-test inflator whose tank holds a real gas: ṁ is the slope of ``delivered`` (m_i − m_0 of
-    :func:`real_gas_tank_masses` against the pressure table's times), times ``scale``; attributes otherwise as
-    :class:`cavity.inflator.TankTestInflator`."""
+class RealGasTankTestInflator(TankTestInflator):
+    """A :class:`cavity.inflator.TankTestInflator` whose tank holds a real gas: ṁ is the slope of ``delivered``
+    (m_i − m_0 of :func:`real_gas_tank_masses` against the pressure table's times [kg]), times ``scale``."""
 
-    name: str
-    tank_pressure_table: Table
-    tank_volume: float
-    temperature_table: Table
-    mass_fractions: tuple
-    gas: object
-    delivered: Table
-    start: float = 0.0
-    scale: float = 1.0
+    delivered: Table = None
 
     def mass_flow(self, t: float) -> float:
         if t < self.start:
             return 0.0
         return self.scale * self.delivered.slope(t - self.start)
-
-    def temperature(self, t: float) -> float:
-        return self.temperature_table(t - self.start)
-
-    @property
-    def breakpoints(self) -> tuple:
-        return scheduled_breakpoints(self.start, self.tank_pressure_table, self.temperature_table)
 
     def mass_between(self, t0: float, t1: float) -> float:
         """Exact mass delivered over [t0, t1] [kg]."""

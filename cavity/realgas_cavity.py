@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .cavity import Cavity
 from .realgas import temperature_from_energy
 
 __all__ = ["RealGasCavity", "RealGasState", "REAL_GAS_ENERGY_MODELS"]
@@ -38,56 +39,27 @@ class _RealMixture:
 
 
 @dataclass(frozen=True)
-class RealGasCavity:
-    """Definition of a real-gas cavity.
+class RealGasCavity(Cavity):
+    """Definition of a real-gas cavity: a :class:`cavity.cavity.Cavity` (``energy`` ``"adiabatic"``,
+    ``"heat_loss"`` or ``"wall"``) whose gas is ``fluid``.
 
-    Attributes
-    ----------
-    name : str
-    volume : volume model (``__call__(t)``, ``rate(t)``, ``breakpoints``) [m^3]
+    Attributes (beyond Cavity's)
+    ----------------------------
     fluid : cavity.realgas.RealFluid
-    initial_masses : (ns,) float
-        [kg]; only entry ``species_index`` is non-zero.
     species_index : int
-        The scene species that is this fluid.
-    initial_temperature : float
-        [K].
-    energy : str
-        ``"adiabatic"``, ``"heat_loss"`` or ``"wall"``.
-    heat_transfer_coefficient, heat_transfer_area : float
-        heat_loss: h_c [W/(m^2 K)], A [m^2].
-    ambient_temperature : float
-        [K].
+        The scene species that is this fluid (the only non-zero entry of ``initial_masses``).
     wall : cavity.wall.Wall or None
         energy ``"wall"``.
-    added_volume, minimum_volume : float
-        [m^3].
-    inflators : tuple
     """
 
-    name: str
-    volume: object
-    fluid: object
-    initial_masses: tuple
-    species_index: int
-    initial_temperature: float
-    energy: str = "adiabatic"
-    heat_transfer_coefficient: float = 0.0
-    heat_transfer_area: float = 0.0
-    ambient_temperature: float = 293.15
+    fluid: object = None
+    species_index: int = 0
     wall: object = None
-    added_volume: float = 0.0
-    minimum_volume: float = 0.0
-    inflators: tuple = ()
     kind = "realgas"
-    isothermal = False
 
     @property
     def n_unknowns(self) -> int:
         return len(self.initial_masses) + (3 if self.wall is not None else 1)
-
-    def total_volume(self, t: float) -> float:
-        return self.volume(t) + self.added_volume
 
     def initial_unknowns(self, gas=None) -> np.ndarray:
         m = np.asarray(self.initial_masses, dtype=float)
@@ -96,16 +68,6 @@ class RealGasCavity:
         U = total * self.fluid.at(total / V, self.initial_temperature).u
         extra = [U] + ([self.wall.initial_temperature, 0.0] if self.wall is not None else [])
         return np.append(m, extra)
-
-    @property
-    def breakpoints(self) -> tuple:
-        return tuple(self.volume.breakpoints) + tuple(b for inf in self.inflators for b in inf.breakpoints)
-
-    def heat_loss(self, T: float) -> float:
-        """h_c·A·(T − T_amb) [W] for ``heat_loss``; 0 otherwise (the wall's heat is in the state)."""
-        if self.energy != "heat_loss":
-            return 0.0
-        return self.heat_transfer_coefficient * self.heat_transfer_area * (T - self.ambient_temperature)
 
     def state(self, t: float, unknowns, T_guess: float) -> "RealGasState":
         """The state at t from this cavity's slice of the unknowns (masses clipped at 0 for the equation of
@@ -130,7 +92,7 @@ class RealGasCavity:
             s.wall_temperature, s.heat_out = T_w, q_in
             s.extra_rates = ((q_in - q_out) / self.wall.thermal_mass, q_out)
         else:
-            s.heat_out = self.heat_loss(T)
+            s.heat_out = self.heat_loss(T)  # Cavity's h_c·A·(T − T_amb), 0 unless heat_loss
         return s
 
 

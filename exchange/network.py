@@ -153,12 +153,8 @@ class Network:
             if kind == "hydraulic":
                 out.append(cav.state(t, y[k:k + 1]))
                 continue
-            if kind == "realgas":
-                s = cav.state(t, y[k:k + cav.n_unknowns], self._T_guess[i])
-                self._T_guess[i] = s.temperature
-                out.append(s)
-                continue
-            s = CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i])
+            s = (cav.state(t, y[k:k + cav.n_unknowns], self._T_guess[i]) if kind == "realgas" else
+                 CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i]))
             self._T_guess[i] = s.temperature
             out.append(s)
         return out

@@ -27,7 +27,7 @@ def test_closed_rigid_tank_pressure_equals_heos(fluid, T0):
     for p0 in PRESSURES:
         V = 0.05
         rho = f.density(p0, T0)
-        cav = RealGasCavity("tank", FixedVolume(V), f, (rho * V,), 0, T0)
+        cav = RealGasCavity("tank", FixedVolume(V), (rho * V,), T0, fluid=f)
         y = cav.initial_unknowns()
         for dU in (0.0, 0.02 * abs(y[1])):
             y1 = y.copy()
