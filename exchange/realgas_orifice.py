@@ -36,8 +36,10 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     r"""The choked throat of an isentropic nozzle fed from the stagnation state (ρ0, T0).
 
     Solves :math:`2(h_0 - h(\rho)) = c(\rho)^2` on the isentrope s = s0 by the secant method in ρ, started from
-    the ideal-gas value :math:`\rho^* = \rho_0 (2/(\kappa+1))^{1/(\kappa-1)}` with the isentropic exponent
-    κ = ρ0·c0²/p0.
+    the previous call's ρ*/ρ0 and T*/T0 (kept on ``fluid``: an integrator asks for nearby states), or on the first
+    call from the ideal-gas value :math:`\rho^* = \rho_0 (2/(\kappa+1))^{1/(\kappa-1)}` with the isentropic
+    exponent κ = ρ0·c0²/p0. It stops when 2(h0 − h) − c² is below 1e-12·c² (the isentrope's own tolerance), so
+    the start may change ρ* in its 13th digit and G* (stationary there) not at all.
 
     Parameters
     ----------
@@ -53,7 +55,8 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     References
     ----------
     Any compressible-flow text for the sonic throat (e.g. Anderson, *Modern Compressible Flow*, §5.4); the real-gas
-    form as in Johnson, "Real-gas effects in critical-flow-through nozzles", J. Basic Eng. 86 (1964).
+    form as in R. C. Johnson, "Calculations of real-gas effects in flow through critical-flow nozzles",
+    J. Basic Eng. 86 (1964) 519–525.
 
     Examples
     --------
