@@ -138,6 +138,10 @@ class CavitySpec:
                              "diameter if horizontal)", "m", default=0.0, check="nonnegative")
     wall_temperature: float = key("wall: initial wall temperature (0: the gas temperature)", "K", default=0.0,
                                   check="nonnegative")
+    wall_orientation: str = key("wall: natural-convection correlation, 'vertical' (Geankoplis, vertical planes and "
+                                "cylinders, over wall_length; HydDown's) or 'horizontal' (Morgan, horizontal "
+                                "cylinder, wall_length = the diameter)", default="vertical",
+                                choices=("vertical", "horizontal"))
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -3,17 +3,19 @@
     m_w c_w dT_w/dt = Q_in − Q_out,   Q_in = h_i A_i (T_gas − T_w),   Q_out = h_o A_o (T_w − T_amb)
 
 The inner coefficient h_i is given, or from natural convection, Nu = C·Ra^n (Geankoplis, *Transport Processes
-and Unit Operations*, 3rd ed., 1993, eq. 4.7-4 and Table 4.7-1, vertical planes and cylinders), with the gas
+and Unit Operations*, 3rd ed., 1993, eq. 4.7-4 and Table 4.7-1, vertical planes and cylinders; or Morgan 1975 for
+a horizontal cylinder on its diameter), with the gas
 properties at the film temperature (T_gas + T_w)/2 and the gas pressure. The constants, the film temperature and
 the characteristic length (the vessel's length when vertical, its diameter when horizontal) are those HydDown
 uses (Andreasen, HydDown, J. Open Source Softw. 6 (2021) 3695), so the two can be compared case for case.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
-__all__ = ["Wall", "natural_convection_nusselt", "rayleigh_number", "natural_convection_coefficient",
-           "GRAVITY"]
+__all__ = ["Wall", "natural_convection_nusselt", "horizontal_cylinder_nusselt", "rayleigh_number",
+           "natural_convection_coefficient", "GRAVITY", "MORGAN_HORIZONTAL_CYLINDER"]
 
 #: Standard gravity [m/s^2].
 GRAVITY = 9.81
@@ -53,6 +55,40 @@ def natural_convection_nusselt(Ra: float) -> float:
     return 1.36 * Ra ** 0.20
 
 
+#: Morgan (1975) for a long horizontal cylinder, Nu_D = C·Ra_D^n: (upper Ra_D of the range, C, n).
+MORGAN_HORIZONTAL_CYLINDER = ((1e-2, 0.675, 0.058), (1e2, 1.02, 0.148), (1e4, 0.850, 0.188), (1e7, 0.480, 0.250),
+                              (math.inf, 0.125, 0.333))
+
+
+def horizontal_cylinder_nusselt(Ra: float) -> float:
+    r"""Nusselt number of free convection around a long horizontal cylinder, on its diameter [-].
+
+    .. math:: Nu_D = C\,Ra_D^{\,n},\quad (C, n) = (0.675, 0.058),\ (1.02, 0.148),\ (0.850, 0.188),\
+              (0.480, 0.250),\ (0.125, 0.333)
+
+    for Ra_D up to 1e-2, 1e2, 1e4, 1e7 and beyond (validated to 1e12).
+
+    Parameters
+    ----------
+    Ra : float
+        Rayleigh number on the diameter [-], >= 0.
+
+    References
+    ----------
+    V. T. Morgan, "The overall convective heat transfer from smooth circular cylinders", Adv. Heat Transfer 11
+    (1975) 199–264; Incropera & DeWitt, *Fundamentals of Heat and Mass Transfer*, Table 9.1.
+
+    Examples
+    --------
+    >>> round(horizontal_cylinder_nusselt(1e6), 4), round(horizontal_cylinder_nusselt(1e9), 3)
+    (15.1789, 124.14)
+    """
+    for upper, C, n in MORGAN_HORIZONTAL_CYLINDER:
+        if Ra <= upper:
+            return C * Ra ** n
+    return 0.0  # not reached
+
+
 def rayleigh_number(L: float, dT: float, rho: float, cp: float, mu: float, k: float, beta: float,
                     g: float = GRAVITY) -> float:
     r"""Rayleigh number of free convection over a length L [-].
@@ -81,8 +117,12 @@ def rayleigh_number(L: float, dT: float, rho: float, cp: float, mu: float, k: fl
     return g * abs(beta) * abs(dT) * L ** 3 * rho * rho * cp / (mu * k)
 
 
-def natural_convection_coefficient(L: float, T_gas: float, T_wall: float, props: tuple) -> float:
+def natural_convection_coefficient(L: float, T_gas: float, T_wall: float, props: tuple,
+                                   orientation: str = "vertical") -> float:
     r"""Free-convection heat transfer coefficient h = Nu·k/L [W/(m^2 K)].
+
+    ``orientation`` ``"vertical"``: :func:`natural_convection_nusselt` over L (HydDown's choice for either
+    orientation of a vessel); ``"horizontal"``: :func:`horizontal_cylinder_nusselt` over L = the diameter.
 
     Parameters
     ----------
@@ -99,7 +139,9 @@ def natural_convection_coefficient(L: float, T_gas: float, T_wall: float, props:
     4.0308
     """
     rho, cp, mu, k, beta = props
-    return natural_convection_nusselt(rayleigh_number(L, T_wall - T_gas, rho, cp, mu, k, beta)) * k / L
+    Ra = rayleigh_number(L, T_wall - T_gas, rho, cp, mu, k, beta)
+    nusselt = horizontal_cylinder_nusselt if orientation == "horizontal" else natural_convection_nusselt
+    return nusselt(Ra) * k / L
 
 
 @dataclass(frozen=True)
@@ -122,6 +164,9 @@ class Wall:
         Characteristic length of the inner convection [m].
     initial_temperature, ambient_temperature : float
         [K].
+    orientation : str
+        Correlation of the inner convection: ``"vertical"`` or ``"horizontal"`` (see
+        :func:`natural_convection_coefficient`).
     """
 
     mass: float
@@ -133,6 +178,7 @@ class Wall:
     length: float
     initial_temperature: float
     ambient_temperature: float
+    orientation: str = "vertical"
 
     @property
     def thermal_mass(self) -> float:
@@ -145,6 +191,6 @@ class Wall:
         h_i = self.inner_h
         if not h_i and T_gas != T_wall:
             h_i = natural_convection_coefficient(self.length, T_gas, T_wall,
-                                                 fluid.film_properties(p, 0.5 * (T_gas + T_wall)))
+                                                 fluid.film_properties(p, 0.5 * (T_gas + T_wall)), self.orientation)
         return h_i * self.inner_area * (T_gas - T_wall), self.outer_h * self.outer_area * (T_wall -
                                                                                            self.ambient_temperature)
