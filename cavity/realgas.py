@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["RealFluid", "IdealGasFluid", "FluidPoint", "temperature_from_energy", "isentrope_temperature", "IDEAL_LIMIT_DENSITY",
+           "MetastableFluid",
            "RealGasSolveError"]
 
 
@@ -82,6 +83,7 @@ class RealFluid:
             Tr = reference_temperature
             self._state.update(self._DT, IDEAL_LIMIT_DENSITY, Tr)
             self.offset = ideal_enthalpy(Tr) - self._state.hmass()
+        self.metastable = MetastableFluid(self)
 
     def __repr__(self) -> str:
         return f"RealFluid({self.name!r}, offset={self.offset!r})"
@@ -113,6 +115,37 @@ class RealFluid:
         st = self._film
         st.update(self._PT, p, T)
         return st.rhomass(), st.cpmass(), st.viscosity(), st.conductivity(), st.isobaric_expansion_coefficient()
+
+
+class MetastableFluid:
+    """The same fluid with its phase imposed as gas: (ρ, T) states past the saturation line are the equation of
+    state's metastable (supersaturated) continuation instead of a two-phase mixture, identical to
+    :meth:`RealFluid.at` wherever the fluid is single-phase. Used for the expansion to an orifice's throat, which
+    is taken as frozen: a gas crossing the saturation line in the microseconds of its passage does not condense
+    (supersaturated nozzle flow, as in steam nozzles up to the Wilson line). The cavity's own state is never
+    metastable (:meth:`RealFluid.at` refuses two-phase states)."""
+
+    def __init__(self, fluid: RealFluid):
+        import CoolProp.CoolProp as CP
+
+        self.name, self._fluid = fluid.name, fluid
+        self._state = CP.AbstractState("HEOS", fluid.name)
+        self._state.specify_phase(CP.iphase_gas)
+        self._DT = CP.DmassT_INPUTS
+        self.last_choke = None
+
+    def at(self, rho: float, T: float) -> FluidPoint:
+        """:meth:`RealFluid.at`, continued past the saturation line."""
+        st = self._state
+        try:
+            st.update(self._DT, rho, T)
+            c = st.speed_sound()
+        except ValueError as exc:
+            raise RealGasSolveError(f"{self.name}: the expansion to the throat reaches rho = {rho!r} kg/m^3, T = {T!r} K "
+                                    f"where the equation of state fails ({exc}): flashing (two-phase) orifice flow "
+                                    "is not modelled") from None
+        off = self._fluid.offset
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
 
 
 def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> tuple:

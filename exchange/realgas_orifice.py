@@ -30,6 +30,18 @@ SECANT_MAX = 40
 
 
 _throat = isentrope_temperature  # (T, FluidPoint) on the isentrope s0 at density rho
+#: Density steps of the first walk down an isentrope (no previous choke point to start from).
+MARCH_STEPS = 8
+
+
+def _march(fluid, rho0, T0, s0, rho):
+    """(T, FluidPoint) on the isentrope s0 at rho, walked down from (rho0, T0) in :data:`MARCH_STEPS` geometric
+    density steps, each Newton started from the last: it keeps to the isentrope's branch where a far guess could
+    find a root of s(ρ, T) = s0 on the equation of state's unphysical continuation (dense fluids)."""
+    T, ratio = T0, (rho / rho0) ** (1.0 / MARCH_STEPS)
+    for k in range(1, MARCH_STEPS + 1):
+        T, pt = _throat(fluid, rho0 * ratio ** k, s0, T)
+    return T, pt
 
 
 def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
@@ -65,14 +77,15 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     >>> round(p / 2.0e5, 6), round(T / 300.0, 12)
     (0.528282, 0.833333333333)
     """
+    fluid = getattr(fluid, "metastable", fluid)  # the expansion is frozen (cavity.realgas.MetastableFluid)
     st0 = fluid.at(rho0, T0)
     h0, s0 = st0[2], st0[3]
     last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0) of the previous call: a warm start
     if last is None:
         kappa = rho0 * st0[4] ** 2 / st0[0]
-        last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)), 2.0 / (kappa + 1.0))
+        last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)),)
     rho_a = rho0 * last[0]
-    T_a, pa = _throat(fluid, rho_a, s0, T0 * last[1])
+    T_a, pa = _throat(fluid, rho_a, s0, T0 * last[1]) if len(last) > 2 else _march(fluid, rho0, T0, s0, rho_a)
     f_a = 2.0 * (h0 - pa[2]) - pa[4] ** 2
     rho_b = rho_a * (1.0 + 1e-6)
     T_b, pb = _throat(fluid, rho_b, s0, T_a)
@@ -86,6 +99,7 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
         if f_b == f_a or abs(f_b) <= noise or abs(rho_b - rho_a) <= SECANT_RTOL * rho_b:
             break
         rho_n = rho_b - f_b * (rho_b - rho_a) / (f_b - f_a)
+        rho_n = min(max(rho_n, 0.5 * rho_b), 0.5 * (rho_b + rho0))  # stay between the start and the cavity
         rho_a, T_a, f_a = rho_b, T_b, f_b
         rho_b = rho_n
         T_b, pb = _throat(fluid, rho_b, s0, T_a)
@@ -96,15 +110,15 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
 
 
 #: Throat/stagnation pressure ratio above which h0 − h is integrated (∫ c²/ρ dρ along the isentrope) instead of
-#: differenced: there h0 − h is under 0.1 % of h and the difference would lose more than three digits.
-QUADRATURE_ABOVE = 0.999
+#: differenced: there h0 − h is under 1 % of h and the difference would lose more than two digits.
+QUADRATURE_ABOVE = 0.99
 _GAUSS3 = ((-0.7745966692414834, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.7745966692414834, 5.0 / 9.0))
 
 
 def _enthalpy_drop(fluid, rho0, T0, s0, rho_t, T_t):
     r"""h0 − h(ρ_t) = ∫ c²/ρ dρ from ρ_t to ρ0 along the isentrope s0 (dh = dp/ρ, dp = c² dρ), by 3-point
-    Gauss–Legendre quadrature [J/kg] (the interval is short, p_t ≥ 0.999 p0, and the integrand smooth: the rule's
-    error, ~(Δρ/ρ)^6, is below 1e-18)."""
+    Gauss–Legendre quadrature [J/kg] (the interval is short, p_t ≥ 0.99 p0, and the integrand smooth: the rule's
+    error, ~(Δρ/2ρ)^6, is below 1e-13)."""
     half, mid, total = 0.5 * (rho0 - rho_t), 0.5 * (rho0 + rho_t), 0.0
     for x, w in _GAUSS3:
         rho = mid + half * x
@@ -118,7 +132,11 @@ def _flux_at_pressure(fluid, rho0, T0, st0, p_t):
     h0, s0 = st0[2], st0[3]
     kappa = rho0 * st0[4] ** 2 / st0[0]
     rho = rho0 * (p_t / st0[0]) ** (1.0 / kappa)
-    T = T0 * (rho / rho0) ** (kappa - 1.0)
+    last = getattr(fluid, "last_choke", None)  # T between T0 and T* in proportion to p0 − p_t, or walk down
+    if last is not None:
+        T = T0 * (1.0 - (1.0 - last[1]) * (1.0 - p_t / st0[0]) / (1.0 - last[2]))
+    else:
+        T = _march(fluid, rho0, T0, s0, rho)[0]
     for _ in range(SECANT_MAX):
         T, pt = _throat(fluid, rho, s0, T)
         step = (pt[0] - p_t) / pt[4] ** 2
@@ -126,6 +144,8 @@ def _flux_at_pressure(fluid, rho0, T0, st0, p_t):
         if abs(step) <= SECANT_RTOL * rho:
             break
     T, pt = _throat(fluid, rho, s0, T)
+    T -= (pt[3] - s0) * T / pt[5]  # one Newton step more: h is differenced below, T must be exact, not 1e-13
+    pt = fluid.at(rho, T)
     r, c2 = p_t - pt[0], pt[4] ** 2  # the Newton residual, removed to first order (dh = dp/ρ, dρ = dp/c²)
     drop = h0 - pt[2] if p_t < QUADRATURE_ABOVE * st0[0] else _enthalpy_drop(fluid, rho0, T0, s0, rho, T)
     v2 = 2.0 * drop - 2.0 * r / rho
@@ -169,6 +189,7 @@ def real_gas_mass_flux(fluid, rho0: float, T0: float, p_down: float) -> float:
     >>> round(real_gas_mass_flux(IdealGasFluid(287.0, 1.4), 2.0e5 / (287.0 * 300.0), 300.0, 1.0e5) * 1e-4, 6)
     0.046671
     """
+    fluid = getattr(fluid, "metastable", fluid)  # the expansion is frozen (cavity.realgas.MetastableFluid)
     st0 = fluid.at(rho0, T0)
     p0 = st0[0]
     if p_down >= p0:

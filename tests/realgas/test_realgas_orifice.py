@@ -1,6 +1,8 @@
 """The real-gas nozzle: the ideal law for an ideal gas, and an independent integration of the isentrope for N2."""
 import math
 
+import numpy as np
+
 import CoolProp.CoolProp as CP
 import pytest
 from scipy.integrate import quad
@@ -12,21 +14,22 @@ from exchange.realgas_orifice import RealGasOrificeLaw, real_gas_critical_state,
 from exchange.vent import GasPoint
 
 
-@pytest.mark.parametrize("gamma", [1.3, 1.4, 5.0 / 3.0])
+@pytest.mark.parametrize("gamma", [1.1, 1.3, 1.4, 5.0 / 3.0])
 def test_equals_the_ideal_law_for_an_ideal_gas(gamma):
-    """Choked and subsonic, for p_down/p0 from 0.1 to 0.9999: <= 1e-12. In the C¹ band below Δp/p0 = 1e-4 the
-    two agree to <= 5e-12: there the ideal law's own slope (q^(2/γ) − q^((γ+1)/γ) at q = 1 − 1e-4) loses
-    about four digits to cancellation."""
+    """Choked and subsonic, p_down/p0 from 0.05 to 0.999 (400 ratios): <= 1e-12. Nearer to p0 both laws carry
+    the rounding of the pressure difference itself (1e-16·p0 of a Δp of s·p0: 1e-12 at s = 1e-4) and, in the C¹
+    band below s = 1e-4, the ideal law's slope (q^(2/γ) − q^((γ+1)/γ) at q = 1 − 1e-4) loses four more digits:
+    there the two agree to <= 3e-11."""
     R, T0 = 296.8, 300.0
     g = IdealGasFluid(R, gamma)
     rho0 = 2.0e5 / (R * T0)
     p0 = g.at(rho0, T0).p  # the same p0 on both sides (ρ0·R·T0 rounds)
-    for q in (0.1, 0.3, 0.5, 0.6, 0.75, 0.9, 0.97, 0.99, 0.995, 0.9999):
+    for q in np.linspace(0.05, 0.999, 400):
         ideal = orifice_mass_flow(p0, T0, q * p0, R, gamma, 1.0)
         assert real_gas_mass_flux(g, rho0, T0, q * p0) == pytest.approx(ideal, rel=1e-12, abs=0.0), q
-    for s in (0.5 * LINEAR_BELOW, 1e-6, 1e-8):
+    for s in (5e-4, 1.1e-4, LINEAR_BELOW, 0.5 * LINEAR_BELOW, 1e-6, 1e-8):
         ideal = orifice_mass_flow(p0, T0, (1.0 - s) * p0, R, gamma, 1.0)
-        assert real_gas_mass_flux(g, rho0, T0, (1.0 - s) * p0) == pytest.approx(ideal, rel=5e-12, abs=0.0), s
+        assert real_gas_mass_flux(g, rho0, T0, (1.0 - s) * p0) == pytest.approx(ideal, rel=3e-11, abs=0.0), s
     assert real_gas_mass_flux(g, rho0, T0, p0) == 0.0
     p_star = real_gas_critical_state(g, rho0, T0)[0]
     assert p_star / p0 == pytest.approx((2.0 / (gamma + 1.0)) ** (gamma / (gamma - 1.0)), rel=1e-12)

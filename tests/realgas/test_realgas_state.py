@@ -94,3 +94,16 @@ def test_energy_offset_matches_the_ideal_gas_species():
     for T in (200.0, 300.0, 500.0):
         assert f.at(1e-6, T).h == pytest.approx(mix.enthalpy(T), abs=1e-5 * mix.enthalpy(300.0))
     assert not math.isnan(f.offset)
+
+
+def test_metastable_view_is_the_fluid_where_single_phase_and_refuses_the_dome():
+    """The throat's frozen (metastable) view equals the fluid on single-phase states; the cavity's view names a
+    two-phase state instead of returning it."""
+    from cavity.realgas import RealGasSolveError
+
+    f = RealFluid("CarbonDioxide")
+    for rho, T in ((200.0, 320.0), (800.0, 350.0), (30.0, 250.0)):
+        assert tuple(f.metastable.at(rho, T)) == tuple(f.at(rho, T))
+    with pytest.raises(RealGasSolveError, match="two-phase"):
+        f.at(360.0, 280.0)
+    assert f.metastable.at(100.0, 270.0).c > 0.0  # supersaturated vapour: the gas branch continued
