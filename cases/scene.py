@@ -142,6 +142,10 @@ class CavitySpec:
                                 "cylinders, over wall_length; HydDown's) or 'horizontal' (Morgan, horizontal "
                                 "cylinder, wall_length = the diameter)", default="vertical",
                                 choices=("vertical", "horizontal"))
+    wall_jet_diameter: float = key("wall: diameter d in the Reynolds number 4·ṁ_in/(π·d·μ) of a forced-convection "
+                                   "term 0.56·Re^0.67 added to the inner Nusselt number while gas flows in "
+                                   "(HydDown's filling correlation, d = the vessel diameter); 0: none", "m",
+                                   default=0.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)

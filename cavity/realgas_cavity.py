@@ -87,13 +87,24 @@ class RealGasCavity(Cavity):
         mix = _RealMixture(m, R, kappa, m / fluid.molar_mass)
         s = RealGasState(masses, mix, T, V, rate, p, rho, pt[2] if pt is not None else 0.0, fluid)
         if self.wall is not None:
-            T_w = float(unknowns[ns + 1])
-            q_in, q_out = self.wall.heat_flows(fluid, p, T, T_w) if m > 0.0 else (0.0, 0.0)
-            s.wall_temperature, s.heat_out = T_w, q_in
-            s.extra_rates = ((q_in - q_out) / self.wall.thermal_mass, q_out)
+            s.wall_temperature = float(unknowns[ns + 1])
+            self.wall_heat(s, 0.0)
         else:
             s.heat_out = self.heat_loss(T)  # Cavity's h_c·A·(T − T_amb), 0 unless heat_loss
         return s
+
+
+    @property
+    def has_inflow_convection(self) -> bool:
+        """The wall's inner coefficient depends on the inflow (a forced-convection term)."""
+        return self.wall is not None and not self.wall.inner_h and self.wall.jet_diameter > 0.0
+
+    def wall_heat(self, s: "RealGasState", inflow: float) -> None:
+        """Set the wall's heat flows of state ``s`` with ``inflow`` [kg/s] entering the cavity: ``s.heat_out``
+        (gas → wall [W]) and ``s.extra_rates`` (dT_w/dt [K/s], wall → ambient [W])."""
+        q_in, q_out = self.wall.heat_flows(self.fluid, s.pressure, s.temperature, s.wall_temperature, inflow) \
+            if s.mixture.mass > 0.0 else (0.0, 0.0)
+        s.heat_out, s.extra_rates = q_in, ((q_in - q_out) / self.wall.thermal_mass, q_out)
 
 
 @dataclass(slots=True)

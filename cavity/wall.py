@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Wall", "natural_convection_nusselt", "horizontal_cylinder_nusselt", "rayleigh_number",
+__all__ = ["Wall", "natural_convection_nusselt", "horizontal_cylinder_nusselt", "forced_inflow_nusselt", "rayleigh_number",
            "natural_convection_coefficient", "GRAVITY", "MORGAN_HORIZONTAL_CYLINDER"]
 
 #: Standard gravity [m/s^2].
@@ -89,6 +89,32 @@ def horizontal_cylinder_nusselt(Ra: float) -> float:
     return 0.0  # not reached
 
 
+def forced_inflow_nusselt(Re: float) -> float:
+    r"""Forced-convection part of the inner Nusselt number while gas flows into a vessel [-].
+
+    .. math:: Nu_{forced} = 0.56\,Re^{0.67},\quad Re = \frac{4\,\dot m_{in}}{\pi\,d\,\mu}
+
+    added to the free-convection Nusselt number over the same length (mixed convection).
+
+    Parameters
+    ----------
+    Re : float
+        Reynolds number of the inflow [-], >= 0.
+
+    References
+    ----------
+    The forced term of Woodfield, Monde and Mitsutake, "Measurement of averaged heat transfer coefficients in
+    high-pressure vessel during charging with hydrogen, nitrogen or argon gas", J. Therm. Sci. Technol. 2 (2007)
+    180–191, in the form HydDown applies while filling (``transport.h_inside_mixed``: d = the vessel diameter).
+
+    Examples
+    --------
+    >>> round(forced_inflow_nusselt(1e5), 3)
+    1253.684
+    """
+    return 0.56 * Re ** 0.67
+
+
 def rayleigh_number(L: float, dT: float, rho: float, cp: float, mu: float, k: float, beta: float,
                     g: float = GRAVITY) -> float:
     r"""Rayleigh number of free convection over a length L [-].
@@ -118,11 +144,13 @@ def rayleigh_number(L: float, dT: float, rho: float, cp: float, mu: float, k: fl
 
 
 def natural_convection_coefficient(L: float, T_gas: float, T_wall: float, props: tuple,
-                                   orientation: str = "vertical") -> float:
+                                   orientation: str = "vertical", inflow: float = 0.0,
+                                   jet_diameter: float = 0.0) -> float:
     r"""Free-convection heat transfer coefficient h = Nu·k/L [W/(m^2 K)].
 
     ``orientation`` ``"vertical"``: :func:`natural_convection_nusselt` over L (HydDown's choice for either
-    orientation of a vessel); ``"horizontal"``: :func:`horizontal_cylinder_nusselt` over L = the diameter.
+    orientation of a vessel); ``"horizontal"``: :func:`horizontal_cylinder_nusselt` over L = the diameter. With
+    an ``inflow`` [kg/s] and a ``jet_diameter`` d [m], :func:`forced_inflow_nusselt` of Re = 4ṁ/(π d μ) is added.
 
     Parameters
     ----------
@@ -141,7 +169,9 @@ def natural_convection_coefficient(L: float, T_gas: float, T_wall: float, props:
     rho, cp, mu, k, beta = props
     Ra = rayleigh_number(L, T_wall - T_gas, rho, cp, mu, k, beta)
     nusselt = horizontal_cylinder_nusselt if orientation == "horizontal" else natural_convection_nusselt
-    return nusselt(Ra) * k / L
+    forced = forced_inflow_nusselt(4.0 * inflow / (math.pi * jet_diameter * mu)) if inflow > 0.0 and jet_diameter \
+        else 0.0
+    return (nusselt(Ra) + forced) * k / L
 
 
 @dataclass(frozen=True)
@@ -167,6 +197,8 @@ class Wall:
     orientation : str
         Correlation of the inner convection: ``"vertical"`` or ``"horizontal"`` (see
         :func:`natural_convection_coefficient`).
+    jet_diameter : float
+        d [m] of the forced term while gas flows in (0: none).
     """
 
     mass: float
@@ -179,18 +211,20 @@ class Wall:
     initial_temperature: float
     ambient_temperature: float
     orientation: str = "vertical"
+    jet_diameter: float = 0.0
 
     @property
     def thermal_mass(self) -> float:
         """m_w·c_w [J/K]."""
         return self.mass * self.heat_capacity
 
-    def heat_flows(self, fluid, p: float, T_gas: float, T_wall: float) -> tuple:
-        """(Q_in gas → wall, Q_out wall → ambient) [W]; ``fluid.film_properties(p, T)`` gives the gas properties
-        for the correlation."""
+    def heat_flows(self, fluid, p: float, T_gas: float, T_wall: float, inflow: float = 0.0) -> tuple:
+        """(Q_in gas → wall, Q_out wall → ambient) [W] with ``inflow`` [kg/s] entering the cavity;
+        ``fluid.film_properties(p, T)`` gives the gas properties for the correlation."""
         h_i = self.inner_h
         if not h_i and T_gas != T_wall:
             h_i = natural_convection_coefficient(self.length, T_gas, T_wall,
-                                                 fluid.film_properties(p, 0.5 * (T_gas + T_wall)), self.orientation)
+                                                 fluid.film_properties(p, 0.5 * (T_gas + T_wall)), self.orientation,
+                                                 inflow, self.jet_diameter)
         return h_i * self.inner_area * (T_gas - T_wall), self.outer_h * self.outer_area * (T_wall -
                                                                                            self.ambient_temperature)

@@ -43,6 +43,18 @@ def _labelled(func, label):
     return func
 
 
+def inflow_convection(net, t: float, states: list, flows: list) -> None:
+    """Give the walls of ``net._inflow_walls`` their heat flows with the mass flow entering each cavity
+    (inflators and exchanges, [kg/s]): :meth:`cavity.realgas_cavity.RealGasCavity.wall_heat`."""
+    for i in net._inflow_walls:
+        cav = net.cavities[i]
+        inflow = sum(inf.mass_flow(t) for inf in cav.inflators)
+        for ex, (mdot, _) in zip(net.exchanges, flows):
+            if (ex.downstream == i and mdot > 0.0) or (ex.upstream == i and mdot < 0.0):
+                inflow += abs(mdot)
+        cav.wall_heat(states[i], inflow)
+
+
 def gas_point(state) -> GasPoint:
     """The flow-law view of a cavity state (a liquid has no R, γ or enthalpy: NaN, NaN, 0)."""
     if getattr(state, "fluid", None) is not None:  # real gas
@@ -97,6 +109,7 @@ class Network:
                         for i in range(len(self.cavities))]
         self._inflow_fractions = [[np.asarray(inf.mass_fractions, dtype=float) for inf in c.inflators]
                                   for c in self.cavities]
+        self._inflow_walls = [i for i, c in enumerate(self.cavities) if getattr(c, "has_inflow_convection", False)]
         self.reset()
 
     def reset(self) -> None:
@@ -209,6 +222,9 @@ class Network:
         """d(unknowns)/dt at (t, y)."""
         t = self.input_time(t)
         states = self.last_states = self.states(t, y)
+        flows = self.exchange_flows(t, states)
+        if self._inflow_walls:  # real-gas walls whose convection depends on the inflow
+            inflow_convection(self, t, states, flows)
         dy = np.zeros_like(y)
         for cav, k, s, c, fractions in zip(self.cavities, self.offsets, states, self._ledger,
                                            self._inflow_fractions):
@@ -231,7 +247,7 @@ class Network:
                 dy[c + 3] += heat
                 if extra:  # a real-gas cavity's wall: temperature, heat to ambient
                     dy[k + ns + 1:k + ns + 1 + len(extra)] = extra
-        for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, self.exchange_flows(t, states))):
+        for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, flows)):
             if mdot == 0.0:
                 continue
             edot = mdot * carrier.h
