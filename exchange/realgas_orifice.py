@@ -44,6 +44,37 @@ def _march(fluid, rho0, T0, s0, rho):
     return T, pt
 
 
+def _sonic_point(fluid, rho0, T0, st0):
+    """(ρ*, T*, FluidPoint) where 2(h0 − h) = c² on the isentrope of st0: :func:`real_gas_critical_state`'s
+    secant search."""
+    h0, s0 = st0[2], st0[3]
+    last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0) of the previous call: a warm start
+    if last is None:
+        kappa = rho0 * st0[4] ** 2 / st0[0]
+        last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)),)
+    rho_a = rho0 * last[0]
+    T_a, pa = _throat(fluid, rho_a, s0, T0 * last[1]) if len(last) > 2 else _march(fluid, rho0, T0, s0, rho_a)
+    f_a = 2.0 * (h0 - pa[2]) - pa[4] ** 2
+    rho_b = rho_a * (1.0 + 1e-6)
+    T_b, pb = _throat(fluid, rho_b, s0, T_a)
+    f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
+    # below 1e-12 c², f is at the level of the isentrope's Newton tolerance: ρ is then the root to ~4e-13, and
+    # G = ρv, stationary there, to ~1e-25
+    noise = 1e-12 * pa[4] ** 2
+    if abs(f_a) <= noise:
+        rho_b, T_b, pb, f_b = rho_a, T_a, pa, f_a
+    for _ in range(SECANT_MAX):
+        if f_b == f_a or abs(f_b) <= noise or abs(rho_b - rho_a) <= SECANT_RTOL * rho_b:
+            break
+        rho_n = rho_b - f_b * (rho_b - rho_a) / (f_b - f_a)
+        rho_n = min(max(rho_n, 0.5 * rho_b), 0.5 * (rho_b + rho0))  # stay between the start and the cavity
+        rho_a, T_a, f_a = rho_b, T_b, f_b
+        rho_b = rho_n
+        T_b, pb = _throat(fluid, rho_b, s0, T_a)
+        f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
+    return rho_b, T_b, pb
+
+
 def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     r"""The choked throat of an isentropic nozzle fed from the stagnation state (ρ0, T0).
 
@@ -79,31 +110,8 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     """
     fluid = getattr(fluid, "metastable", fluid)  # the expansion is frozen (cavity.realgas.MetastableFluid)
     st0 = fluid.at(rho0, T0)
-    h0, s0 = st0[2], st0[3]
-    last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0) of the previous call: a warm start
-    if last is None:
-        kappa = rho0 * st0[4] ** 2 / st0[0]
-        last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)),)
-    rho_a = rho0 * last[0]
-    T_a, pa = _throat(fluid, rho_a, s0, T0 * last[1]) if len(last) > 2 else _march(fluid, rho0, T0, s0, rho_a)
-    f_a = 2.0 * (h0 - pa[2]) - pa[4] ** 2
-    rho_b = rho_a * (1.0 + 1e-6)
-    T_b, pb = _throat(fluid, rho_b, s0, T_a)
-    f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
-    # below 1e-12 c², f is at the level of the isentrope's Newton tolerance: ρ is then the root to ~4e-13, and
-    # G = ρv, stationary there, to ~1e-25
-    noise = 1e-12 * pa[4] ** 2
-    if abs(f_a) <= noise:
-        rho_b, T_b, pb, f_b = rho_a, T_a, pa, f_a
-    for _ in range(SECANT_MAX):
-        if f_b == f_a or abs(f_b) <= noise or abs(rho_b - rho_a) <= SECANT_RTOL * rho_b:
-            break
-        rho_n = rho_b - f_b * (rho_b - rho_a) / (f_b - f_a)
-        rho_n = min(max(rho_n, 0.5 * rho_b), 0.5 * (rho_b + rho0))  # stay between the start and the cavity
-        rho_a, T_a, f_a = rho_b, T_b, f_b
-        rho_b = rho_n
-        T_b, pb = _throat(fluid, rho_b, s0, T_a)
-        f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
+    h0 = st0[2]
+    rho_b, T_b, pb = _sonic_point(fluid, rho0, T0, st0)
     v = math.sqrt(max(2.0 * (h0 - pb[2]), 0.0))
     fluid.last_choke = (rho_b / rho0, T_b / T0, pb[0] / st0[0])
     return pb[0], rho_b * v, rho_b, T_b
