@@ -134,6 +134,10 @@ class MetastableFluid:
         self._DT = CP.DmassT_INPUTS
         self.last_choke = None
 
+    def fundamental_derivative(self) -> float:
+        """Γ = 1 + (ρ/c)(∂c/∂ρ)_s [-] at the state of the last :meth:`at` call."""
+        return self._state.fundamental_derivative_of_gas_dynamics()
+
     def at(self, rho: float, T: float) -> FluidPoint:
         """:meth:`RealFluid.at`, continued past the saturation line."""
         st = self._state
@@ -231,6 +235,10 @@ class IdealGasFluid:
         self.name, self.R, self.gamma = "ideal", R, gamma
         self.cv = R / (gamma - 1.0)
         self.offset = 0.0
+
+    def fundamental_derivative(self) -> float:
+        """Γ = (γ + 1)/2 [-] (constant for an ideal gas of constant cp)."""
+        return 0.5 * (self.gamma + 1.0)
 
     def at(self, rho: float, T: float) -> FluidPoint:
         R, cv = self.R, self.cv

@@ -24,9 +24,10 @@ from .vent import GasPoint
 
 __all__ = ["real_gas_critical_state", "real_gas_mass_flux", "RealGasOrificeLaw", "RealGasPoint", "real_gas_point"]
 
-#: Secant iterations on the choke condition stop when the density step is below this fraction [-].
-SECANT_RTOL = 1e-13
-SECANT_MAX = 40
+#: Newton iterations on the choke condition and the throat pressure stop when the density step is below this
+#: fraction [-].
+ITERATION_RTOL = 1e-13
+ITERATION_MAX = 40
 
 
 _throat = isentrope_temperature  # (T, FluidPoint) on the isentrope s0 at density rho
@@ -46,39 +47,36 @@ def _march(fluid, rho0, T0, s0, rho):
 
 def _sonic_point(fluid, rho0, T0, st0):
     """(ρ*, T*, FluidPoint) where 2(h0 − h) = c² on the isentrope of st0: :func:`real_gas_critical_state`'s
-    secant search."""
+    Newton search, f(ρ) = 2(h0 − h) − c² with df/dρ|s = −2Γc²/ρ (dh = c²dρ/ρ; d(c²)/dρ|s = 2(Γ − 1)c²/ρ, Γ the
+    fundamental derivative of gas dynamics)."""
     h0, s0 = st0[2], st0[3]
     last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0) of the previous call: a warm start
     if last is None:
         kappa = rho0 * st0[4] ** 2 / st0[0]
         last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)),)
-    rho_a = rho0 * last[0]
-    T_a, pa = _throat(fluid, rho_a, s0, T0 * last[1]) if len(last) > 2 else _march(fluid, rho0, T0, s0, rho_a)
-    f_a = 2.0 * (h0 - pa[2]) - pa[4] ** 2
-    rho_b = rho_a * (1.0 + 1e-6)
-    T_b, pb = _throat(fluid, rho_b, s0, T_a)
-    f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
-    # below 1e-12 c², f is at the level of the isentrope's Newton tolerance: ρ is then the root to ~4e-13, and
-    # G = ρv, stationary there, to ~1e-25
-    noise = 1e-12 * pa[4] ** 2
-    if abs(f_a) <= noise:
-        rho_b, T_b, pb, f_b = rho_a, T_a, pa, f_a
-    for _ in range(SECANT_MAX):
-        if f_b == f_a or abs(f_b) <= noise or abs(rho_b - rho_a) <= SECANT_RTOL * rho_b:
+    rho = rho0 * last[0]
+    T, pt = _throat(fluid, rho, s0, T0 * last[1]) if len(last) > 2 else _march(fluid, rho0, T0, s0, rho)
+    for _ in range(ITERATION_MAX):
+        c2 = pt[4] ** 2
+        f = 2.0 * (h0 - pt[2]) - c2
+        # below 1e-12 c², f is at the level of the isentrope's Newton tolerance: ρ is the root to ~4e-13 and
+        # G = ρv, stationary there, exact to ~1e-25
+        if abs(f) <= 1e-12 * c2:
             break
-        rho_n = rho_b - f_b * (rho_b - rho_a) / (f_b - f_a)
-        rho_n = min(max(rho_n, 0.5 * rho_b), 0.5 * (rho_b + rho0))  # stay between the start and the cavity
-        rho_a, T_a, f_a = rho_b, T_b, f_b
-        rho_b = rho_n
-        T_b, pb = _throat(fluid, rho_b, s0, T_a)
-        f_b = 2.0 * (h0 - pb[2]) - pb[4] ** 2
-    return rho_b, T_b, pb
+        rho_n = rho + f * rho / (2.0 * c2 * fluid.fundamental_derivative())  # Γ at (ρ, T): the last at() call
+        rho_n = min(max(rho_n, 0.5 * rho), 0.5 * (rho + rho0))  # stay between the start and the cavity
+        done = abs(rho_n - rho) <= ITERATION_RTOL * rho
+        rho = rho_n
+        T, pt = _throat(fluid, rho, s0, T)
+        if done:
+            break
+    return rho, T, pt
 
 
 def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     r"""The choked throat of an isentropic nozzle fed from the stagnation state (ρ0, T0).
 
-    Solves :math:`2(h_0 - h(\rho)) = c(\rho)^2` on the isentrope s = s0 by the secant method in ρ, started from
+    Solves :math:`2(h_0 - h(\rho)) = c(\rho)^2` on the isentrope s = s0 by Newton's method in ρ, started from
     the previous call's ρ*/ρ0 and T*/T0 (kept on ``fluid``: an integrator asks for nearby states), or on the first
     call from the ideal-gas value :math:`\rho^* = \rho_0 (2/(\kappa+1))^{1/(\kappa-1)}` with the isentropic
     exponent κ = ρ0·c0²/p0. It stops when 2(h0 − h) − c² is below 1e-12·c² (the isentrope's own tolerance), so
@@ -145,11 +143,11 @@ def _flux_at_pressure(fluid, rho0, T0, st0, p_t):
         T = T0 * (1.0 - (1.0 - last[1]) * (1.0 - p_t / st0[0]) / (1.0 - last[2]))
     else:
         T = _march(fluid, rho0, T0, s0, rho)[0]
-    for _ in range(SECANT_MAX):
+    for _ in range(ITERATION_MAX):
         T, pt = _throat(fluid, rho, s0, T)
         step = (pt[0] - p_t) / pt[4] ** 2
         rho -= step
-        if abs(step) <= SECANT_RTOL * rho:
+        if abs(step) <= ITERATION_RTOL * rho:
             break
     T, pt = _throat(fluid, rho, s0, T)
     T -= (pt[3] - s0) * T / pt[5]  # one Newton step more: h is differenced below, T must be exact, not 1e-13
