@@ -57,6 +57,10 @@ def build_model(scene: Scene) -> Model:
     cavities = tuple(_cavity(scene, gas, i, geo) for i in range(len(scene.cavity)))
     names = [c.name for c in cavities]
     exchanges = tuple(_exchange(scene, i, names) for i in range(len(scene.exchange)))
+    if any(c.fluid == "real_gas" for c in scene.cavity):
+        from .build_realgas import real_gas_laws
+
+        exchanges = real_gas_laws(exchanges, cavities)
     if geo is None:
         network = Network(gas, cavities, exchanges, ambient)
     else:
@@ -201,17 +205,25 @@ def _cavity(scene: Scene, gas: GasModel, i: int, geo=None):
     volume = geo["volumes"][c.name] if geo and c.name in geo["volumes"] else _volume(scene, i)
     if c.fluid == "hydraulic":
         return _hydraulic(scene, i, volume)
+    if c.fluid == "real_gas":
+        from .build_realgas import real_gas_cavity
+
+        return real_gas_cavity(scene, gas, i, volume, tuple(_inflator(gas, inf, scene) for inf in c.inflator))
     y = gas.mass_fractions(c.gas, molar=c.gas_by_mole)
     V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
     masses = gas.masses_at(y, c.pressure, c.temperature, V0)
-    inflators = tuple(_inflator(gas, inf) for inf in c.inflator)
+    inflators = tuple(_inflator(gas, inf, scene) for inf in c.inflator)
     return Cavity(c.name, volume, tuple(masses), c.temperature, c.energy, c.added_volume, c.minimum_volume,
                   c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, inflators)
 
 
-def _inflator(gas: GasModel, inf):
+def _inflator(gas: GasModel, inf, scene: Scene | None = None):
     y = gas.mass_fractions(inf.gas, molar=inf.gas_by_mole)
     mix = gas.mixture(y)  # 1 kg of inflator gas
+    if inf.type == "tank_test" and inf.tank_gas == "real_gas":
+        from .build_realgas import real_gas_tank_test
+
+        return real_gas_tank_test(scene, inf, tuple(y), mix)
     if inf.type == "mass_temperature":
         return MassTemperatureInflator(inf.name, inf.mass_flow, inf.temperature, tuple(y), mix, inf.start, inf.scale)
     if inf.type == "tank_test":
@@ -281,6 +293,8 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
         scale[k:k + ns] = m
         if not cav.isothermal:
             scale[k + ns] = e
+        if getattr(cav, "wall", None) is not None:  # real gas with a wall: wall temperature, heat to ambient
+            scale[k + ns + 1:k + ns + 3] = (cav.wall.initial_temperature, e)
         mass_scales.append(m)
         energy_scales.append(e)
     if getattr(network, "body", None) is not None:
@@ -328,7 +342,9 @@ def _modelled(scene: Scene, cavities) -> dict:
         "exchanges": {e.name: {"law": e.law, "from": e.from_, "to": e.to, "two_way": e.two_way,
                                "area": "leakage surface" if (e.leakage_surface or e.leakage_box) else "fixed",
                                "activation": _activation_text(e)} for e in scene.exchange},
-        "gas": "ideal-gas mixture, species masses tracked",
+        "gas": "ideal-gas mixture, species masses tracked" + ("; real gas (CoolProp HEOS) in " + ", ".join(
+            c.name for c in cavities if getattr(c, "kind", "gas") == "realgas")
+            if any(getattr(c, "kind", "gas") == "realgas" for c in cavities) else ""),
         "geometry": "none" if all(not c.mesh for c in scene.cavity) else "closed mesh volume"
                     + ("; cavity nodes wrapped around bodies" if any(c.wrapped_by for c in scene.cavity) else ""),
         "blockage": {e.name: f"leakage surface blocked by {list(e.blocked_by)}, tolerance {e.contact_tolerance} m"

@@ -46,6 +46,7 @@ def history_columns(model: Model) -> list:
                  f"{c.name}.volume [m^3]"]
     for e in model.network.exchanges:
         cols += [f"{e.name}.mass_flow [kg/s]", f"{e.name}.area [m^2]"]
+    cols += [f"{c.name}.wall_temperature [K]" for c in model.network.cavities if getattr(c, "wall", None)]
     return cols + contact_columns(model)
 
 
@@ -59,6 +60,7 @@ def quantities(model: Model, t: float, y, mode=None) -> list:
         row += [s.pressure, s.temperature, s.mass if s.mixture is None else s.mixture.mass, s.volume]
     for j, (mdot, _) in enumerate(net.exchange_flows(t, states)):
         row += [mdot, net.exchange_area(j, t)]
+    row += [s.wall_temperature for c, s in zip(net.cavities, states) if getattr(c, "wall", None)]
     return row + contact_row(model, t, y)
 
 

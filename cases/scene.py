@@ -22,7 +22,7 @@ from .tables_io import table_or_constant
 __all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
            "ExchangeSpec", "ContactSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
-ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
+ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss", "wall")
 LAWS = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",
         "volume_flux", "bulk_viscosity", "linear_resistance")
 INFLATOR_TYPES = ("mass_temperature", "tank_test", "pressure_mass", "dual_pressure")
@@ -82,6 +82,10 @@ class InflatorSpec:
     gas_by_mole: bool = key("fractions in `gas` are molar", default=False)
     start: float = key("activation time; tables are relative to it", "s", default=0.0, check="nonnegative")
     scale: float = key("multiplier on the mass flow", default=1.0, check="nonnegative")
+    tank_gas: str = key("tank_test: the tank's gas, 'ideal' (ṁ = V·ṗ/(γ·R·T_in)) or 'real_gas' (CoolProp HEOS of "
+                        "the inflator's one species, docs/realgas.md)", default="ideal", choices=("ideal", "real_gas"))
+    tank_temperature: float = key("tank_test with tank_gas = 'real_gas': initial tank temperature", "K",
+                                  default=0.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -109,7 +113,9 @@ class CavitySpec:
     inflator: tuple = key("inflators ([[cavity.inflator]] tables)", default=())
     wrapped_by: tuple = key("bodies whose surface the cavity mesh's nodes are placed on where they would "
                             "penetrate (the cushion wraps the impactor)", default=())
-    fluid: str = key("what fills the cavity", default="gas", choices=("gas", "hydraulic"))
+    fluid: str = key("what fills the cavity: an ideal gas, a liquid, or a real gas (CoolProp HEOS equation of "
+                     "state of the one species in `gas`, docs/realgas.md)", default="gas",
+                     choices=("gas", "hydraulic", "real_gas"))
     density: float = key("hydraulic: density at the initial pressure and temperature", "kg/m^3", default=0.0,
                          check="nonnegative")
     bulk_modulus: float = key("hydraulic: bulk modulus K in p = p0 + K·ln(ρ/ρ_ref)", "Pa", default=0.0,
@@ -118,6 +124,28 @@ class CavitySpec:
                                    default=0.0, check="nonnegative")
     temperature_table: str = key("hydraulic: CSV (time [s], liquid temperature [K]); default: constant "
                                  "`temperature`", default="")
+    wall_mass: float = key("real_gas, energy = 'wall': mass of the lumped vessel wall", "kg", default=0.0,
+                           check="nonnegative")
+    wall_heat_capacity: float = key("wall: specific heat of the wall material", "J/(kg K)", default=0.0,
+                                    check="nonnegative")
+    wall_inner_area: float = key("wall: inner (wetted) area", "m^2", default=0.0, check="nonnegative")
+    wall_outer_area: float = key("wall: outer area (0: wall_inner_area)", "m^2", default=0.0, check="nonnegative")
+    wall_inner_h: float = key("wall: inner heat transfer coefficient (0: natural convection Nu = C·Ra^n over "
+                              "wall_length, docs/realgas.md)", "W/(m^2 K)", default=0.0, check="nonnegative")
+    wall_outer_h: float = key("wall: outer heat transfer coefficient to the ambient temperature", "W/(m^2 K)",
+                              default=0.0, check="nonnegative")
+    wall_length: float = key("wall: length of the natural-convection correlation (vessel length if vertical, "
+                             "diameter if horizontal)", "m", default=0.0, check="nonnegative")
+    wall_temperature: float = key("wall: initial wall temperature (0: the gas temperature)", "K", default=0.0,
+                                  check="nonnegative")
+    wall_orientation: str = key("wall: natural-convection correlation, 'vertical' (Geankoplis, vertical planes and "
+                                "cylinders, over wall_length; HydDown's) or 'horizontal' (Morgan, horizontal "
+                                "cylinder, wall_length = the diameter)", default="vertical",
+                                choices=("vertical", "horizontal"))
+    wall_jet_diameter: float = key("wall: diameter d in the Reynolds number 4·ṁ_in/(π·d·μ) of a forced-convection "
+                                   "term 0.56·Re^0.67 added to the inner Nusselt number while gas flows in "
+                                   "(HydDown's filling correlation, d = the vessel diameter); 0: none", "m",
+                                   default=0.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -332,5 +360,10 @@ def scene_from_dict(data: dict, path) -> Scene:
     })
     scene = replace(scene, _path=str(path))
     check_cross_references(scene, path)
+    if any(c.fluid == "real_gas" or c.energy == "wall" or any(i.tank_gas == "real_gas" for i in c.inflator)
+           for c in scene.cavity):
+        from .scene_realgas import check_real_gas
+
+        check_real_gas(scene)
     check_contacts(scene, path, data)
     return scene

@@ -104,6 +104,8 @@ class CavityState:
     volume: float
     volume_rate: float
     pressure: float
+    fluid = None  # an ideal-gas mixture: no real-gas equation of state (cavity.realgas_cavity.RealGasState has one)
+    extra_rates = None  # no unknowns after U
 
     @classmethod
     def of(cls, cavity: Cavity, gas: GasModel, t: float, unknowns, T_guess: float) -> "CavityState":

@@ -118,6 +118,7 @@ class HydraulicState:
     pressure: float
     density: float
     mixture = None
+    fluid = None
 
     @property
     def mass(self) -> float:

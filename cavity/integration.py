@@ -281,7 +281,10 @@ def _advance(system, t, y, stop, options, traj):
     if hasattr(system, "begin_segment"):
         system.begin_segment(t, stop, y)
     switches = system.events()
-    dirs = _directions(system, switches, t, y, traj.last_event, SWITCH_NEAR_ZERO_PER_RTOL * options.rtol)
+    try:
+        dirs = _directions(system, switches, t, y, traj.last_event, SWITCH_NEAR_ZERO_PER_RTOL * options.rtol)
+    except (ArithmeticError, ValueError) as exc:  # a switch function failed as the right-hand side can
+        raise SolverError(f"a switch function failed at t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None
     switches = [g for g, d in zip(switches, dirs) if d is not None]
     dirs = [d for d in dirs if d is not None]
     events = [_watched(g, d) for g, d in zip(switches, dirs)]

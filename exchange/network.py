@@ -19,7 +19,6 @@ import numpy as np
 
 from cavity.cavity import CavityState
 from .activation import activated_area
-from .orifice import critical_pressure_ratio
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
@@ -44,8 +43,24 @@ def _labelled(func, label):
     return func
 
 
+def inflow_convection(net, t: float, states: list, flows: list) -> None:
+    """Give the walls of ``net._inflow_walls`` their heat flows with the mass flow entering each cavity
+    (inflators and exchanges, [kg/s]): :meth:`cavity.realgas_cavity.RealGasCavity.wall_heat`."""
+    for i in net._inflow_walls:
+        cav = net.cavities[i]
+        inflow = sum(inf.mass_flow(t) for inf in cav.inflators)
+        for ex, (mdot, _) in zip(net.exchanges, flows):
+            if (ex.downstream == i and mdot > 0.0) or (ex.upstream == i and mdot < 0.0):
+                inflow += abs(mdot)
+        cav.wall_heat(states[i], inflow)
+
+
 def gas_point(state) -> GasPoint:
     """The flow-law view of a cavity state (a liquid has no R, γ or enthalpy: NaN, NaN, 0)."""
+    if getattr(state, "fluid", None) is not None:  # real gas
+        from .realgas_orifice import real_gas_point
+
+        return real_gas_point(state)
     mix, T = state.mixture, state.temperature
     if mix is None:  # hydraulic
         return GasPoint(state.pressure, T, state.density, math.nan, math.nan, 0.0, _LIQUID)
@@ -94,6 +109,7 @@ class Network:
                         for i in range(len(self.cavities))]
         self._inflow_fractions = [[np.asarray(inf.mass_fractions, dtype=float) for inf in c.inflators]
                                   for c in self.cavities]
+        self._inflow_walls = [i for i, c in enumerate(self.cavities) if getattr(c, "has_inflow_convection", False)]
         self.reset()
 
     def reset(self) -> None:
@@ -146,10 +162,12 @@ class Network:
         """The gas state of every cavity at (t, y)."""
         out = []
         for i, (cav, k) in enumerate(zip(self.cavities, self.offsets)):
-            if getattr(cav, "kind", "gas") == "hydraulic":
+            kind = getattr(cav, "kind", "gas")
+            if kind == "hydraulic":
                 out.append(cav.state(t, y[k:k + 1]))
                 continue
-            s = CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i])
+            s = (cav.state(t, y[k:k + cav.n_unknowns], self._T_guess[i]) if kind == "realgas" else
+                 CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i]))
             self._T_guess[i] = s.temperature
             out.append(s)
         return out
@@ -204,6 +222,9 @@ class Network:
         """d(unknowns)/dt at (t, y)."""
         t = self.input_time(t)
         states = self.last_states = self.states(t, y)
+        flows = self.exchange_flows(t, states)
+        if self._inflow_walls:  # real-gas walls whose convection depends on the inflow
+            inflow_convection(self, t, states, flows)
         dy = np.zeros_like(y)
         for cav, k, s, c, fractions in zip(self.cavities, self.offsets, states, self._ledger,
                                            self._inflow_fractions):
@@ -218,11 +239,15 @@ class Network:
                     if not cav.isothermal:
                         dy[k + ns] += hdot
             if not cav.isothermal:
-                work, heat = s.pressure * s.volume_rate, cav.heat_loss(s.temperature)
+                extra = getattr(s, "extra_rates", None)
+                work = s.pressure * s.volume_rate
+                heat = cav.heat_loss(s.temperature) if extra is None else s.heat_out
                 dy[k + ns] -= work + heat
                 dy[c + 2] += work
                 dy[c + 3] += heat
-        for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, self.exchange_flows(t, states))):
+                if extra:  # a real-gas cavity's wall: temperature, heat to ambient
+                    dy[k + ns + 1:k + ns + 1 + len(extra)] = extra
+        for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, flows)):
             if mdot == 0.0:
                 continue
             edot = mdot * carrier.h
@@ -318,7 +343,7 @@ class Network:
         else:
             hi, lo = pb, pa
             point = self._ambient_point if ex.downstream is None else gas_point(states[ex.downstream])
-        return (lo - critical_pressure_ratio(point.gamma) * hi) / hi
+        return (lo - point.choke_ratio() * hi) / hi
 
     def _pop_switch(self, t, y, j):
         _, pa, pb = self._pressures(t, y, j)

@@ -11,6 +11,7 @@ import numpy as np
 
 from .activation import Activation
 from .laws import OrificeLaw
+from .orifice import critical_pressure_ratio
 
 __all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]  # OrificeLaw re-exported from .laws
 
@@ -30,6 +31,10 @@ class GasPoint:
     gamma: float
     h: float
     mass_fractions: object
+
+    def choke_ratio(self) -> float:
+        """Throat/upstream pressure ratio below which an orifice fed from this gas is choked [-]."""
+        return critical_pressure_ratio(self.gamma)
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,178 @@
+"""Vessel discharge and filling experiments: ventsim (real gas, lumped wall) and HydDown against the measurements.
+
+Cases (cases/validation/, set-ups and measurements as collected by HydDown, MIT, cases/validation/LICENSE.HydDown):
+N2 150 bar discharge (Haque et al. 1992, I1; p, gas T top and bottom, wall T inner and outer), air 7.9 bar
+discharge (p, mean gas T) and air filling from 3.7 kPa (no measured history: ventsim against HydDown only).
+
+For each: ventsim's error against the measurement (pressure [bar] and gas temperature [K], RMS and max over the
+measured points, the model interpolated linearly onto them; the N2 gas temperature against the mean of its two
+probes; the wall against the mean of the inner and outer probes), the minimum gas temperature computed and
+measured, and CPU and wall times: ventsim build + run (best of 5, CoolProp's fluid loaded once beforehand) and
+HydDown's HydDown(setup) + run() (best of 3, in its own interpreter); on a shared machine the CPU times are the
+steadier figure. HydDown runs when an interpreter that imports it is
+found (HYDDOWN_PYTHON, /work/venv-hyddown/bin/python, or this one); its rows are skipped otherwise. Plots of
+measured against computed p and T (and wall T) go to OUT/validation.png (default out/benchmarks).
+
+Requires: numpy, matplotlib; HydDown optional (a separate venv: python3 -m venv /work/venv-hyddown &&
+/work/venv-hyddown/bin/pip install hyddown).
+
+Usage::
+
+    python benchmarks/validation.py [--out DIR]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from cases.build import build_model  # noqa: E402
+from cases.runner import run  # noqa: E402
+from cases.scene import load_scene  # noqa: E402
+
+HERE = ROOT / "cases" / "validation"
+#: scene, HydDown set-up, stem of the measured CSVs (None: no measurement), gas and wall probes
+CASES = (("n2_150bar_discharge", "N2_Exp_I1.yml", "n2_150bar", ("gas_high", "gas_low"), ("wall_inner", "wall_outer")),
+         ("air_790kPa_discharge", "Air_790kPa_21mm.yml", "air_790kPa", ("gas_mean",), ()),
+         ("air_3_7kPa_filling", "Air_3-7kPa_21mm.yml", None, (), ()))
+
+
+def _csv(name: str) -> tuple:
+    t, v = np.loadtxt(HERE / "data" / f"{name}.csv", delimiter=",", skiprows=1).T
+    return t, v
+
+
+def _probe_mean(stem: str, probes: tuple) -> tuple | None:
+    """The mean of the probes' histories on the first probe's times (or None without probes)."""
+    if not probes:
+        return None
+    t, v = _csv(f"{stem}_{probes[0]}")
+    return t, np.mean([v] + [np.interp(t, *_csv(f"{stem}_{p}")) for p in probes[1:]], axis=0)
+
+
+def measured(stem, gas, wall) -> dict:
+    if stem is None:
+        return {}
+    t, p = _csv(f"{stem}_pressure")
+    out = {"p": (t, p * 1e5), "T": _probe_mean(stem, gas), "T_wall": _probe_mean(stem, wall)}
+    out["T probes"] = {name: _csv(f"{stem}_{name}") for name in gas}
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def run_ventsim(scene: str, repeats: int = 5) -> dict:
+    path = HERE / f"{scene}.toml"
+    build_model(load_scene(path))  # loads CoolProp's fluid and fits the species once
+    wall = cpu = float("inf")
+    for _ in range(repeats):
+        start, start_cpu = time.perf_counter(), time.process_time()
+        r = run(build_model(load_scene(path)))
+        wall, cpu = min(wall, time.perf_counter() - start), min(cpu, time.process_time() - start_cpu)
+    return {"time": r.column("time"), "p": r.column("vessel.pressure"), "T": r.column("vessel.temperature"),
+            "T_wall": r.column("vessel.wall_temperature"), "wall time [s]": wall, "cpu time [s]": cpu,
+            "rhs": r.summary["solver"]["rhs_calls"]}
+
+
+def hyddown_python() -> str | None:
+    for exe in (os.environ.get("HYDDOWN_PYTHON"), "/work/venv-hyddown/bin/python", sys.executable):
+        if exe and Path(exe).exists() and subprocess.run([exe, "-c", "import hyddown"],
+                                                         capture_output=True).returncode == 0:
+            return exe
+    return None
+
+
+def run_hyddown(exe: str, setup: str) -> dict:
+    out = subprocess.run([exe, str(ROOT / "benchmarks" / "_hyddown_run.py"), str(HERE / "hyddown" / setup)],
+                         capture_output=True, text=True, check=True).stdout
+    d = json.loads(out.strip().splitlines()[-1])
+    return {k: np.asarray(v) if isinstance(v, list) else v for k, v in d.items()}
+
+
+def errors(model: dict, meas: tuple, key: str, scale: float = 1.0) -> tuple:
+    """(RMS, max |error|) of model[key] interpolated onto the measured points, divided by ``scale``."""
+    t, v = meas
+    e = (np.interp(t, model["time"], model[key]) - v) / scale
+    return float(np.sqrt(np.mean(e ** 2))), float(np.max(np.abs(e)))
+
+
+def rows_of(name: str, label: str, model: dict, meas: dict) -> str:
+    p = errors(model, meas["p"], "p", 1e5) if "p" in meas else (np.nan, np.nan)
+    T = errors(model, meas["T"], "T") if "T" in meas else (np.nan, np.nan)
+    Tmin = float(np.min(model["T"])) if np.min(model["T"]) < model["T"][0] - 1e-9 else float(np.max(model["T"]))
+    Tmeas = float(np.min(meas["T"][1])) if "T" in meas else np.nan
+    wall = errors(model, meas["T_wall"], "T_wall") if "T_wall" in meas else (np.nan, np.nan)
+    return (f"| {name} | {label} | {p[0]:.3f} | {p[1]:.3f} | {T[0]:.2f} | {T[1]:.2f} | {Tmin:.2f} | {Tmeas:.2f} | "
+            f"{wall[0]:.2f} | {model['cpu time [s]']:.3f} | {model['wall time [s]']:.3f} |")
+
+
+def plot(results: list, out: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, len(results), figsize=(5 * len(results), 7), squeeze=False)
+    for col, (name, meas, ours, theirs) in enumerate(results):
+        ax_p, ax_T = axes[0, col], axes[1, col]
+        for model, style, who in ((ours, "-", "ventsim"), (theirs, "--", "HydDown")):
+            if model is None:
+                continue
+            ax_p.plot(model["time"], model["p"] / 1e5, style, label=who)
+            ax_T.plot(model["time"], model["T"], style, label=f"{who} gas")
+            ax_T.plot(model["time"], model["T_wall"], style, label=f"{who} wall", alpha=0.6)
+        if "p" in meas:
+            ax_p.plot(meas["p"][0], meas["p"][1] / 1e5, "ko", ms=4, label="measured")
+        for probe, (t, v) in meas.get("T probes", {}).items():
+            ax_T.plot(t, v, "o", ms=4, mfc="none", label=f"measured {probe}")
+        if "T_wall" in meas:
+            ax_T.plot(*meas["T_wall"], "ks", ms=3, label="measured wall (mean)")
+        ax_p.set(title=name, ylabel="pressure [bar]")
+        ax_T.set(xlabel="time [s]", ylabel="temperature [K]")
+        ax_p.legend(fontsize=7)
+        ax_T.legend(fontsize=7)
+    fig.tight_layout()
+    path = out / "validation.png"
+    fig.savefig(path, dpi=90)
+    return path
+
+
+def main(argv=None) -> int:
+    args = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    args.add_argument("--out", default=str(ROOT / "out" / "benchmarks"))
+    out = Path(args.parse_args(argv).out)
+    out.mkdir(parents=True, exist_ok=True)
+    print(__doc__.split("\n")[0])
+    exe = hyddown_python()
+    print(f"HydDown: {exe or 'not found (its rows are skipped)'}\n")
+    print("| case | code | p RMS [bar] | p max [bar] | T RMS [K] | T max [K] | T min (max) computed [K] | "
+          "T min measured [K] | wall T RMS [K] | CPU time [s] | wall time [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    results, speed = [], []
+    for scene, setup, stem, gas, wall in CASES:
+        meas = measured(stem, gas, wall)
+        ours = run_ventsim(scene)
+        print(rows_of(scene, f"ventsim ({ours['rhs']} RHS)", ours, meas))
+        theirs = run_hyddown(exe, setup) if exe else None
+        if theirs is not None:
+            print(rows_of(scene, "HydDown", theirs, meas))
+            dev = np.max(np.abs(np.interp(theirs["time"], ours["time"], ours["p"]) - theirs["p"])) / 1e5
+            speed.append((scene, theirs["cpu time [s]"] / ours["cpu time [s]"],
+                          theirs["wall time [s]"] / ours["wall time [s]"], dev))
+        results.append((scene, meas, ours, theirs))
+    for scene, cpu, wall, dev in speed:
+        print(f"\n{scene}: HydDown / ventsim CPU time {cpu:.1f}x, wall time {wall:.1f}x; largest "
+              f"|p_ventsim - p_HydDown| {dev:.3f} bar", end="")
+    print(f"\n\nplot: {plot(results, out)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

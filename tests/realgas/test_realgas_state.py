@@ -1,0 +1,109 @@
+"""Real-gas cavity state against CoolProp HEOS, entropy of an isentropic expansion, and the tables' absence.
+
+The state from (m, U, V) is found by Newton's method on HEOS at (ρ, T) (:mod:`cavity.realgas`); the reference
+here is a different CoolProp route, the (ρ, u) flash ``DmassUmass_INPUTS`` of the same equation of state.
+"""
+import math
+
+import CoolProp.CoolProp as CP
+import numpy as np
+import pytest
+
+from cavity.realgas import IdealGasFluid, RealFluid, temperature_from_energy
+from cavity.realgas_cavity import RealGasCavity
+from cavity.volume import FixedVolume
+
+CASES = [("Nitrogen", 300.0), ("Helium", 300.0), ("Hydrogen", 300.0), ("CarbonDioxide", 350.0)]  # CO2: T > Tc
+PRESSURES = [1e5, 100e5, 300e5, 600e5]
+
+
+@pytest.mark.parametrize("fluid,T0", CASES)
+def test_closed_rigid_tank_pressure_equals_heos(fluid, T0):
+    """p from (m, U, V) of a rigid tank, at its initial state and after adding 2 % of its energy, equals the
+    HEOS (ρ, u) flash to <= 1e-6 (it is HEOS itself, so it agrees to ~1e-12)."""
+    f = RealFluid(fluid)
+    heos = CP.AbstractState("HEOS", fluid)
+    worst = 0.0
+    for p0 in PRESSURES:
+        V = 0.05
+        rho = f.density(p0, T0)
+        cav = RealGasCavity("tank", FixedVolume(V), (rho * V,), T0, fluid=f)
+        y = cav.initial_unknowns()
+        for dU in (0.0, 0.02 * abs(y[1])):
+            y1 = y.copy()
+            y1[1] += dU
+            s = cav.state(0.0, y1, T0)
+            heos.update(CP.DmassUmass_INPUTS, y1[0] / V, y1[1] / y1[0])
+            worst = max(worst, abs(s.pressure / heos.p() - 1.0), abs(s.temperature / heos.T() - 1.0))
+        assert cav.state(0.0, y, 1.2 * T0).pressure == pytest.approx(p0, rel=1e-10)  # the initial state itself
+    assert worst <= 1e-6
+    assert worst <= 1e-9  # what it measures: HEOS to the Newton tolerance
+
+
+def test_ideal_gas_fluid_state_is_the_closed_form():
+    """The same Newton on an ideal gas of constant cv: T = u/cv exactly (to round-off)."""
+    g = IdealGasFluid(296.8, 1.4)
+    T, pt = temperature_from_energy(g, 2.0, g.cv * 412.5, 300.0)
+    assert T == pytest.approx(412.5, rel=1e-13)
+    assert pt.p == pytest.approx(2.0 * 296.8 * 412.5, rel=1e-13)
+
+
+def test_isentropic_expansion_conserves_entropy(tmp_path):
+    """N2 at 300 bar in a rigid-walled cylinder whose volume triples (dU = −p dV, adiabatic): the entropy at the
+    end equals the initial one, |Δs|/cv <= 1e-8 (a relative temperature error of 1e-8)."""
+    from cases.build import build_model
+    from cases.runner import run
+    from cases.scene import load_scene
+
+    (tmp_path / "v.csv").write_text("time [s],volume [m^3]\n0,0.01\n0.01,0.03\n")
+    (tmp_path / "s.toml").write_text("""
+[time]
+end = 0.01
+[solver]
+rtol = 1e-11
+[ambient]
+gas = {N2 = 1.0}
+[[cavity]]
+name = "cylinder"
+fluid = "real_gas"
+gas = {N2 = 1.0}
+pressure = 300.0e5
+temperature = 300.0
+volume_table = "v.csv"
+""")
+    r = run(build_model(load_scene(tmp_path / "s.toml")))
+    cav = r.model.network.cavities[0]
+    f = cav.fluid
+    s0 = f.at(cav.initial_masses[0] / 0.01, 300.0)
+    T1, m1, V1 = r.column("cylinder.temperature")[-1], r.column("cylinder.mass")[-1], r.column("cylinder.volume")[-1]
+    s1 = f.at(m1 / V1, T1)
+    assert V1 == pytest.approx(0.03)
+    assert T1 < 230.0  # it did expand and cool
+    assert abs(s1.s - s0.s) / s0.cv <= 1e-8
+
+
+def test_energy_offset_matches_the_ideal_gas_species():
+    """At vanishing density the fluid's h equals the ideal-gas species' h (the offset's purpose) at 200–500 K,
+    to the cp0 fit's accuracy."""
+    from cavity.gas import GasModel
+    from cavity.species import species_from_coolprop
+
+    gas = GasModel((species_from_coolprop("N2"),))
+    mix = gas.mixture([1.0])
+    f = RealFluid("Nitrogen", mix.enthalpy, 300.0)
+    for T in (200.0, 300.0, 500.0):
+        assert f.at(1e-6, T).h == pytest.approx(mix.enthalpy(T), abs=1e-5 * mix.enthalpy(300.0))
+    assert not math.isnan(f.offset)
+
+
+def test_metastable_view_is_the_fluid_where_single_phase_and_refuses_the_dome():
+    """The throat's frozen (metastable) view equals the fluid on single-phase states; the cavity's view names a
+    two-phase state instead of returning it."""
+    from cavity.realgas import RealGasSolveError
+
+    f = RealFluid("CarbonDioxide")
+    for rho, T in ((200.0, 320.0), (800.0, 350.0), (30.0, 250.0)):
+        assert tuple(f.metastable.at(rho, T)) == tuple(f.at(rho, T))
+    with pytest.raises(RealGasSolveError, match="two-phase"):
+        f.at(360.0, 280.0)
+    assert f.metastable.at(100.0, 270.0).c > 0.0  # supersaturated vapour: the gas branch continued
