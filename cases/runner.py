@@ -13,6 +13,7 @@ from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 from .build import Model, build_model
 from .build_leak import blockage_rule
 from .contact_results import contact_columns, contact_row, contact_summary, nodal_history
+from .body_outputs import body_columns
 from .history_outputs import engineering_columns
 from .provenance import provenance
 from .scene import Scene, load_scene
@@ -196,6 +197,10 @@ def run(model: Model, *, progress: bool = False) -> Results:
         summary["contact"] = {net.contact.name: contact_summary(model, traj)}
         contact = nodal_history(model, traj, model.output_times)
     columns, history = engineering_columns(model, traj, history_columns(model), history)
+    bodies = body_columns(model, traj, history[:, 0], set(columns))
+    if bodies:
+        columns = columns + [name for name, _ in bodies]
+        history = np.column_stack([history] + [values for _, values in bodies])
     return Results(model, traj, columns, history, summary, contact)
 
 

@@ -134,15 +134,20 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
             dy[k + 1] = m.gravity + force / m.mass
         return dy
 
-    def applied_force(self, y, states) -> float:
-        """Force on the dynamic body along its axis from wrapping, pressure area and spring [N] (not gravity)."""
+    def gas_force(self, y, states) -> float:
+        """Force of the gas on the dynamic body along its axis [N]: (p − p_amb)·dV/ds of the cavity it intrudes
+        into (dV/ds < 0 while intruding) + (p − p_amb)·A of its pressure cavity."""
         k, f, force = self.body_offset, self.forces, 0.0
         if self.pushed is not None:
-            p = states[self.pushed].pressure
-            force += (p - self.ambient.pressure) * self.volume_slope(y[k])  # dV/ds < 0 while intruding
+            force += (states[self.pushed].pressure - self.ambient.pressure) * self.volume_slope(y[k])
         if f.cavity is not None:
             force += (states[f.cavity].pressure - self.ambient.pressure) * f.area
-        return force - f.preload - f.stiffness * y[k]
+        return force
+
+    def applied_force(self, y, states) -> float:
+        """Force on the dynamic body along its axis from the gas and the spring [N] (not gravity, not contact)."""
+        f = self.forces
+        return self.gas_force(y, states) - f.preload - f.stiffness * y[self.body_offset]
 
     def events(self):
         out = super().events()
