@@ -1,0 +1,189 @@
+"""Read an Abaqus input file into keyword blocks: keyword, parameters, data lines, file and line number.
+
+The syntax is the one of the Abaqus Analysis User's Guide, "Input syntax rules" (section 1.2.1 in the 6.x
+manuals; "Abaqus Keywords Reference Guide: Introduction" in 2017+): a line starting with ``**`` is a comment; a
+line starting with ``*`` is a keyword line ``*NAME, PARAM=VALUE, FLAG``, continued on the next line when it ends
+with a comma; every other line is a data line of comma-separated fields. Keywords, parameters and labels are not
+case sensitive (labels are folded to upper case, as Abaqus does for unquoted labels).
+
+``*INCLUDE, INPUT=file`` is expanded in place (relative to the including file). ``*PARAMETER`` data lines
+``name = expression`` define parameters that ``<name>`` substitutes in later keyword and data lines (Keywords
+Reference, *PARAMETER); expressions use numbers, + - * / ** and parentheses and the parameters defined before.
+"""
+from __future__ import annotations
+
+import ast
+import operator
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import SceneError
+
+__all__ = ["Keyword", "DataLine", "read_keywords", "deck_error"]
+
+_SUBST = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
+_OPS = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
+        ast.Pow: operator.pow, ast.USub: operator.neg, ast.UAdd: operator.pos}
+
+
+def deck_error(file, line: int, keyword: str, message: str) -> SceneError:
+    """The one-line error for a deck: ``deck.inp: line 12: *FLUID CAVITY: message``."""
+    return SceneError(file, f"line {line}", f"*{keyword}: {message}" if keyword else message)
+
+
+@dataclass(frozen=True)
+class DataLine:
+    """One data line: its stripped fields (strings), file and line number."""
+
+    fields: tuple
+    file: str
+    line: int
+
+
+@dataclass
+class Keyword:
+    """A keyword block: ``name`` upper case with single spaces (``"FLUID CAVITY"``), ``params`` (upper-case
+    names; a flag without ``=`` has the value ``True``), the data lines that follow it, where it starts."""
+
+    name: str
+    params: dict
+    file: str
+    line: int
+    data: list = field(default_factory=list)
+
+    def error(self, message: str, line: int | None = None) -> SceneError:
+        return deck_error(self.file, self.line if line is None else line, self.name, message)
+
+    def param(self, name: str, default=None):
+        return self.params.get(name, default)
+
+    def label(self, name: str, required: bool = False) -> str | None:
+        """A parameter whose value is a label (upper case); ``required`` raises when it is missing."""
+        value = self.params.get(name)
+        if value is None or value is True:
+            if required:
+                raise self.error(f"missing required parameter {name}=")
+            return None
+        return value.upper()
+
+    def number(self, name: str, default=None) -> float | None:
+        value = self.params.get(name)
+        if value is None:
+            return default
+        try:
+            return float(value)
+        except (TypeError, ValueError):
+            raise self.error(f"parameter {name}: expected a number, got {value!r}") from None
+
+
+def _evaluate(expr: str, params: dict, file, line):
+    """The value of a *PARAMETER expression (numbers, parameters, + - * / **)."""
+
+    def ev(node):
+        if isinstance(node, ast.Expression):
+            return ev(node.body)
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+            return node.value
+        if isinstance(node, ast.Name) and node.id in params:
+            return params[node.id]
+        if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
+            return _OPS[type(node.op)](ev(node.left), ev(node.right))
+        if isinstance(node, ast.UnaryOp) and type(node.op) in _OPS:
+            return _OPS[type(node.op)](ev(node.operand))
+        if isinstance(node, ast.Name):
+            raise deck_error(file, line, "PARAMETER", f"unknown parameter {node.id!r}")
+        raise deck_error(file, line, "PARAMETER", f"unsupported expression {expr!r} (numbers, parameters and "
+                                                  "+ - * / ** only)")
+
+    try:
+        return ev(ast.parse(expr.strip(), mode="eval"))
+    except SyntaxError:
+        raise deck_error(file, line, "PARAMETER", f"cannot read the expression {expr!r}") from None
+    except (ZeroDivisionError, OverflowError) as exc:
+        raise deck_error(file, line, "PARAMETER", f"{expr!r}: {exc}") from None
+
+
+def _substitute(text: str, params: dict, file, line, keyword: str) -> str:
+    def repl(m):
+        name = m.group(1)
+        if name not in params:
+            raise deck_error(file, line, keyword, f"<{name}> names no *PARAMETER defined before this line")
+        return repr(params[name]) if isinstance(params[name], float) else str(params[name])
+    return _SUBST.sub(repl, text) if "<" in text else text
+
+
+def _parse_keyword_line(text: str, file, line) -> tuple[str, dict]:
+    parts = [p.strip() for p in text[1:].split(",")]
+    name = " ".join(parts[0].upper().split())
+    if not name:
+        raise deck_error(file, line, "", "a '*' with no keyword name")
+    params = {}
+    for p in parts[1:]:
+        if not p:
+            continue
+        k, eq, v = p.partition("=")
+        k = " ".join(k.upper().split())
+        params[k] = v.strip().strip('"') if eq else True
+    return name, params
+
+
+def _lines(path: Path, stack: tuple):
+    """(file, line number, text) of ``path`` with *INCLUDE expanded."""
+    try:
+        text = path.read_text(errors="replace")
+    except OSError as exc:
+        raise SceneError(path, "", f"cannot read the deck: {exc.strerror or exc}") from None
+    raw = text.splitlines()
+    i = 0
+    while i < len(raw):
+        lineno, t = i + 1, raw[i].rstrip()
+        i += 1
+        if t.lstrip().startswith("*") and not t.lstrip().startswith("**"):
+            while t.endswith(",") and i < len(raw) and not raw[i].lstrip().startswith("*"):
+                t += raw[i].strip()
+                i += 1
+            if " ".join(t.lstrip()[1:].split(",")[0].upper().split()) == "INCLUDE":
+                _, params = _parse_keyword_line(t.lstrip(), path, lineno)
+                name = params.get("INPUT")
+                if not isinstance(name, str) or not name:
+                    raise deck_error(path, lineno, "INCLUDE", "missing INPUT=file")
+                target = (path.parent / name).resolve()
+                if not target.is_file():
+                    raise deck_error(path, lineno, "INCLUDE", f"the file {name!r} does not exist")
+                if target in stack:
+                    raise deck_error(path, lineno, "INCLUDE", f"{name!r} includes itself")
+                yield from _lines(target, stack + (target,))
+                continue
+        yield path, lineno, t
+
+
+def read_keywords(path) -> list:
+    """The keyword blocks of the deck at ``path`` in order (data before the first keyword is an error)."""
+    path = Path(path)
+    blocks, params, current = [], {}, None
+    for file, lineno, text in _lines(path, (path.resolve(),)):
+        stripped = text.strip()
+        if not stripped or stripped.startswith("**"):
+            continue
+        where = current.name if current is not None else ""
+        if stripped.startswith("*"):
+            name, kparams = _parse_keyword_line(_substitute(stripped, params, file, lineno, where), file, lineno)
+            current = Keyword(name, kparams, str(file), lineno)
+            blocks.append(current)
+            continue
+        if current is None:
+            raise deck_error(file, lineno, "", f"data line before any keyword: {stripped[:40]!r}")
+        if current.name == "PARAMETER":
+            key, eq, expr = stripped.partition("=")
+            if not eq or not key.strip().isidentifier():
+                raise deck_error(file, lineno, "PARAMETER", f"expected 'name = expression', got {stripped!r}")
+            params[key.strip()] = _evaluate(_substitute(expr, params, file, lineno, "PARAMETER"), params, file,
+                                            lineno)
+            continue
+        if current.name == "HEADING":
+            current.data.append(DataLine((stripped,), str(file), lineno))
+            continue
+        fields = tuple(f.strip() for f in _substitute(stripped, params, file, lineno, where).split(","))
+        current.data.append(DataLine(fields, str(file), lineno))
+    return blocks
