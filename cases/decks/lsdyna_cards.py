@@ -1,0 +1,106 @@
+"""Read an LS-DYNA keyword deck into keyword blocks of cards (LS-DYNA Keyword User's Manual, "Introduction:
+General card format"): ``$`` starts a comment line, ``*`` a keyword; a card is fixed-width (eight fields of 10
+characters unless the keyword says otherwise) or free format (fields separated by commas); a blank field takes
+its default. ``*INCLUDE`` (next card: the file name) is expanded in place.
+
+A small reader of our own rather than ansys-dyna-core (pydyna): pydyna reads these cards correctly (checked on
+*AIRBAG_WANG_NEFSKE) but its install pulls ansys-dpf-core, grpcio, docker and pandas (418 MB here) and its
+import takes ~4 s, for the dozen keywords ventsim maps.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import SceneError
+from .abaqus_lexer import deck_error
+
+__all__ = ["DynaKeyword", "read_dyna", "fields"]
+
+
+@dataclass
+class DynaKeyword:
+    """A keyword (upper case, e.g. ``AIRBAG_WANG_NEFSKE_ID``) and its cards: (file, line, raw text)."""
+
+    name: str
+    file: str
+    line: int
+    cards: list = field(default_factory=list)
+
+    def error(self, message: str, line: int | None = None) -> SceneError:
+        return deck_error(self.file, self.line if line is None else line, self.name, message)
+
+
+def fields(kw: DynaKeyword, card, widths, kinds):
+    """The values of one card: ``widths`` in characters, ``kinds`` 'i' (int), 'f' (float), 's' (text); blank
+    fields are None. Free format (a comma in the card) splits at the commas instead."""
+    _, line, text = card
+    if "," in text:
+        raw = [f.strip() for f in text.split(",")]
+    else:
+        raw, pos = [], 0
+        for w in widths:
+            raw.append(text[pos:pos + w].strip())
+            pos += w
+    raw = (raw + [""] * len(kinds))[:len(kinds)]
+    out = []
+    for i, (r, k) in enumerate(zip(raw, kinds)):
+        if not r or k == "s":
+            out.append(r or None)
+            continue
+        try:
+            v = float(r)
+        except ValueError:
+            raise kw.error(f"field {i + 1}: expected a number, got {r!r}", line) from None
+        if k == "i":
+            if v != int(v):
+                raise kw.error(f"field {i + 1}: expected an integer, got {r!r}", line)
+            v = int(v)
+        out.append(v)
+    return out
+
+
+def _lines(path: Path, stack):
+    try:
+        raw = path.read_text(errors="replace").splitlines()
+    except OSError as exc:
+        raise SceneError(path, "", f"cannot read the deck: {exc.strerror or exc}") from None
+    i = 0
+    while i < len(raw):
+        lineno, text = i + 1, raw[i].rstrip("\n")
+        i += 1
+        if text.upper().startswith("*INCLUDE"):
+            while i < len(raw) and raw[i].startswith("$"):
+                i += 1
+            if i >= len(raw) or raw[i].startswith("*"):
+                raise deck_error(path, lineno, "INCLUDE", "missing the card with the file name")
+            name = raw[i].strip()
+            i += 1
+            target = (path.parent / name).resolve()
+            if not target.is_file():
+                raise deck_error(path, lineno, "INCLUDE", f"the file {name!r} does not exist")
+            if target in stack:
+                raise deck_error(path, lineno, "INCLUDE", f"{name!r} includes itself")
+            yield from _lines(target, stack + (target,))
+            continue
+        yield path, lineno, text
+
+
+def read_dyna(path) -> list:
+    """The keyword blocks of the LS-DYNA deck at ``path``, in order."""
+    path = Path(path)
+    blocks, current = [], None
+    for file, lineno, text in _lines(path, (path.resolve(),)):
+        if not text.strip() or text.startswith("$"):
+            continue
+        if text.startswith("*"):
+            name = text[1:].strip().upper()
+            if name.endswith("+") or ("LONG=" in name.replace(" ", "") and name.startswith("KEYWORD")):
+                raise deck_error(file, lineno, name, "long format (20-character fields) is not supported")
+            current = DynaKeyword(name.split()[0] if name else name, str(file), lineno)
+            blocks.append(current)
+            continue
+        if current is None:
+            raise deck_error(file, lineno, "", f"card before any keyword: {text.strip()[:40]!r}")
+        current.cards.append((str(file), lineno, text))
+    return blocks
