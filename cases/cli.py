@@ -11,6 +11,7 @@ import sys
 import time
 from pathlib import Path
 
+from .decks.commands import add_import_parser, add_units_argument
 from .errors import SceneError
 
 __all__ = ["main", "EXIT_OK", "EXIT_CHECK_FAILED", "EXIT_BAD_INPUT", "EXIT_INTERRUPTED"]
@@ -31,11 +32,15 @@ def _configure_logging(args) -> None:
 
 
 def _run(args) -> int:
+    from .decks.commands import scene_for_run
     from .output import write_results
     from .runner import run_scene
 
     start = time.process_time()
-    results = run_scene(args.scene, progress=not args.quiet)
+    scene, deck = scene_for_run(args.scene, args.out, args.units, args.quiet)
+    results = run_scene(scene, progress=not args.quiet)
+    if deck is not None:
+        results.summary.setdefault("modelled", {})["deck"] = deck.modelled()
     log.debug("built and solved in %.2f s CPU", time.process_time() - start)
     start = time.process_time()
     paths = write_results(results, args.out)
@@ -85,7 +90,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"ventsim {version()}")
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("run", help="run a scene file and write history.csv, summary.json, history.png")
-    r.add_argument("scene", type=Path, help="scene TOML file")
+    r.add_argument("scene", type=Path, help="scene TOML file, or an Abaqus .inp / LS-DYNA .k deck")
     r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
     r.add_argument("--quiet", action="store_true", help="print nothing but errors (no progress bar)")
     r.add_argument("--verbose", action="store_true", help="also print the CPU time of each phase")
@@ -93,6 +98,7 @@ def parser() -> argparse.ArgumentParser:
                    help="also draw each blocked leakage surface off screen: PNGs, a GIF and a VTK series (.pvd)")
     r.add_argument("--times", type=float, nargs="+", default=None,
                    help="times [s] of the PNGs (default: t = 0 and the time of the smallest leakage area)")
+    add_units_argument(r)
     r.set_defaults(func=_run)
     c = sub.add_parser("check", help="run the case library and compare with the reference histories")
     c.add_argument("cases", nargs="*", help="case names (default: all)")
@@ -100,6 +106,7 @@ def parser() -> argparse.ArgumentParser:
     c.set_defaults(func=_check)
     from .sweep import add_sweep_parser
     add_sweep_parser(sub)
+    add_import_parser(sub)
     return p
 
 
