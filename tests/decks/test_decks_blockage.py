@@ -1,0 +1,52 @@
+"""The blockage deck's vent area against A_e·N_c/N_e at the plate positions: by brute force
+(blockage.reference) and by the analytic distance from a vent node to the plate rectangle."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+import blockage
+from blockage.reference import evaluate_reference
+from cases.decks import deck_scene
+from cases.library import HERE
+from cases.runner import run_scene
+
+A_EFF, SPEED, H, C0 = 2.0e-4, 2.0, 0.0005, 0.001  # effective area [m^2], plate speed [m/s], gap, clearance [m]
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("blockage")
+    scene, imported = deck_scene(HERE / "decks" / "vented_box_blockage.inp", tmp / "scene.toml")
+    return run_scene(scene), tmp, imported
+
+
+def analytic_leak_area(t):
+    """A_eff·(1 − Σ A_e N_c/N_e / Σ A_e) with N_c counted from the exact node-to-rectangle distance."""
+    x0, x1, y0, y1 = -0.15 + SPEED * t, -0.03 + SPEED * t, 0.04, 0.16
+    blocked_area = 0.0
+    for i in (1, 2):  # the 2 x 2 vent elements of 0.05 m, from x, y = 0.05 to 0.15
+        for j in (1, 2):
+            corners = [(0.05 * (i + a), 0.05 * (j + b)) for a, b in ((0, 0), (1, 0), (1, 1), (0, 1))]
+            n_c = sum(np.hypot(np.hypot(max(x0 - x, 0, x - x1), max(y0 - y, 0, y - y1)), H) <= C0
+                      for x, y in corners)
+            blocked_area += 0.05 * 0.05 * n_c / 4
+    return A_EFF * (1.0 - blocked_area / 0.01)
+
+
+def test_vent_area_is_the_unblocked_fraction_of_the_effective_area(run):
+    results, tmp, imported = run
+    vent = blockage.LeakageSurface.read(tmp / imported.data["exchange"][0]["leakage_surface"])
+    plate = trimesh.load(tmp / imported.data["body"][0]["mesh"], force="mesh")
+    t, area = results.column("time"), results.column("vent.area")
+    checked = set()
+    for k in range(0, len(t), 4):
+        shift = np.eye(4)
+        shift[0, 3] = SPEED * t[k]
+        ref = evaluate_reference(vent, [(plate, shift)], C0, effective_area=A_EFF)
+        assert abs(area[k] - ref.leak_area) <= 1e-15 * A_EFF, t[k]
+        assert abs(area[k] - analytic_leak_area(t[k])) <= 1e-15 * A_EFF, t[k]
+        checked.add(round(area[k] / A_EFF * 12))  # 12ths: N_c/N_e steps of the four elements
+    assert len(checked) >= 4  # open, partly blocked (several fractions), closed
+    assert area[0] == A_EFF and area[-1] == 0.0

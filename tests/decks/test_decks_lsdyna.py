@@ -1,0 +1,68 @@
+"""LS-DYNA deck errors are one line with the file, line and keyword; fixed and free format read alike."""
+from __future__ import annotations
+
+import pytest
+
+from cases.decks import import_deck
+from cases.errors import SceneError
+from cases.library import HERE
+
+BAG = (HERE / "decks" / "wang_nefske_bag.k").read_text()
+
+
+def write(tmp_path, text):
+    (tmp_path / "wang_nefske_bag.k").write_text(text)
+    return tmp_path / "wang_nefske_bag.k"
+
+
+def error_of(path):
+    with pytest.raises(SceneError) as info:
+        import_deck(path)
+    assert "\n" not in str(info.value)
+    return str(info.value)
+
+
+def line_of(text, needle):
+    return text.splitlines().index(needle) + 1
+
+
+def test_free_format_card_reads_like_fixed_width(tmp_path):
+    fixed = BAG.replace("718.0, 1005.0, 600.0, 0, 10, 0.0, 0, 0.0",
+                        "".join(f"{v:>10}" for v in ("718.0", "1005.0", "600.0", 0, 10, "0.0", 0, "0.0")))
+    assert import_deck(write(tmp_path, fixed)).data == import_deck(HERE / "decks" / "wang_nefske_bag.k").data
+
+
+def test_hybrid_airbag_is_refused_by_name(tmp_path):
+    text = BAG.replace("*AIRBAG_WANG_NEFSKE_ID", "*AIRBAG_HYBRID_ID")
+    deck = write(tmp_path, text)
+    assert error_of(deck) == (f"{deck}: line {line_of(text, '*AIRBAG_HYBRID_ID')}: *AIRBAG_HYBRID_ID: not supported: "
+                              "ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE and *AIRBAG_INTERACTION")
+
+
+def test_missing_curve(tmp_path):
+    text = BAG.replace("718.0, 1005.0, 600.0, 0, 10,", "718.0, 1005.0, 600.0, 0, 11,")
+    deck = write(tmp_path, text)
+    assert error_of(deck) == f"{deck}: line {line_of(text, '*AIRBAG_WANG_NEFSKE_ID')}: *AIRBAG_WANG_NEFSKE_ID: " \
+                             "LCMT: no *DEFINE_CURVE 11"
+
+
+def test_broken_field(tmp_path):
+    card = "".join(f"{v:>10}" for v in ("0.7", 0, "5.0e-4", 0, "0.0", 0, "0.0", 0))
+    broken = card.replace("    5.0e-4", "    5.0e4x")
+    text = BAG.replace(card, broken)
+    deck = write(tmp_path, text)
+    n = line_of(text, broken)
+    assert error_of(deck) == f"{deck}: line {n}: *AIRBAG_WANG_NEFSKE_ID: field 3: expected a number, got '5.0e4x'"
+
+
+def test_missing_include(tmp_path):
+    text = BAG.replace("*TITLE", "*INCLUDE\nnodes.k\n*TITLE")
+    deck = write(tmp_path, text)
+    assert error_of(deck) == f"{deck}: line 2: *INCLUDE: the file 'nodes.k' does not exist"
+
+
+def test_unknown_keyword_is_ignored_once(tmp_path):
+    text = BAG.replace("*END", "*CONTROL_TIMESTEP\n0.0\n*CONTROL_TIMESTEP\n0.0\n*END")
+    imported = import_deck(write(tmp_path, text))
+    assert [i for i in imported.ignored if "TIMESTEP" in i] == \
+        [f"ignored: *CONTROL_TIMESTEP (line {line_of(text, '*CONTROL_TIMESTEP')})"]
