@@ -19,17 +19,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import SceneError
+from .deck_io import deck_error, deck_lines, include_target
 
 __all__ = ["Keyword", "DataLine", "read_keywords", "deck_error"]
 
 _SUBST = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
 _OPS = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
         ast.Pow: operator.pow, ast.USub: operator.neg, ast.UAdd: operator.pos}
-
-
-def deck_error(file, line: int, keyword: str, message: str) -> SceneError:
-    """The one-line error for a deck: ``deck.inp: line 12: *FLUID CAVITY: message``."""
-    return SceneError(file, f"line {line}", f"*{keyword}: {message}" if keyword else message)
 
 
 @dataclass(frozen=True)
@@ -130,11 +126,7 @@ def _parse_keyword_line(text: str, file, line) -> tuple[str, dict]:
 
 def _lines(path: Path, stack: tuple):
     """(file, line number, text) of ``path`` with *INCLUDE expanded."""
-    try:
-        text = path.read_text(errors="replace")
-    except OSError as exc:
-        raise SceneError(path, "", f"cannot read the deck: {exc.strerror or exc}") from None
-    raw = text.splitlines()
+    raw = deck_lines(path)
     i = 0
     while i < len(raw):
         lineno, t = i + 1, raw[i].rstrip()
@@ -148,11 +140,7 @@ def _lines(path: Path, stack: tuple):
                 name = params.get("INPUT")
                 if not isinstance(name, str) or not name:
                     raise deck_error(path, lineno, "INCLUDE", "missing INPUT=file")
-                target = (path.parent / name).resolve()
-                if not target.is_file():
-                    raise deck_error(path, lineno, "INCLUDE", f"the file {name!r} does not exist")
-                if target in stack:
-                    raise deck_error(path, lineno, "INCLUDE", f"{name!r} includes itself")
+                target = include_target(path, lineno, name, stack)
                 yield from _lines(target, stack + (target,))
                 continue
         yield path, lineno, t

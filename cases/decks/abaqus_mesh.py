@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .abaqus_lexer import deck_error
+from .deck_io import deck_error
 
 __all__ = ["Mesh", "Surface", "read_mesh", "SURFACE_ELEMENTS", "face_nodes"]
 

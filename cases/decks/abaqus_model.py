@@ -9,13 +9,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 from ..errors import SceneError
 from ..schema import suggest
 from . import abaqus_bodies, abaqus_exchange, abaqus_fluid, abaqus_inflator
 from .abaqus_lexer import read_keywords
 from .abaqus_mesh import face_nodes, read_mesh
+from .deck_io import faces_area, ignored_line
 from .imported import Imported
 from .units import unit_system
 from .write_scene import csv_text, obj_text
@@ -107,20 +106,14 @@ class Deck:
         return face_nodes(self.mesh, self.mesh.surfaces[surface], outward=outward, file=kw.file, line=kw.line)
 
     def surface_area(self, faces):
-        total = 0.0
-        for f in faces:
-            p = np.array([[self.si(c, "length") for c in self.mesh.nodes[n]] for n in f])
-            for k in range(1, len(f) - 1):
-                total += 0.5 * float(np.linalg.norm(np.cross(p[k] - p[0], p[k + 1] - p[0])))
-        return total
+        return faces_area(faces, {n: [self.si(c, "length") for c in self.mesh.nodes[n]] for f in faces for n in f})
 
     def blockers(self, leak, cavity_surface, act):
         return abaqus_bodies.blockers(self, leak, cavity_surface, act)
 
     def ignore(self, kw, why=""):
         if kw.name not in self.ignored:
-            where = f"line {kw.line}" if Path(kw.file) == self.path else f"{Path(kw.file).name} line {kw.line}"
-            self.ignored[kw.name] = f"ignored: *{kw.name} ({where}){': ' + why if why else ''}"
+            self.ignored[kw.name] = ignored_line(kw.name, kw.file, kw.line, self.path, why)
 
 
 def _step(deck, kw):

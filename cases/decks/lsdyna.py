@@ -20,6 +20,7 @@ from pathlib import Path
 
 from ..errors import SceneError
 from .imported import Imported
+from .deck_io import ignored_line
 from .lsdyna_bags import bag_entries
 from .lsdyna_cards import fields, read_dyna
 from .units import unit_system
@@ -144,6 +145,5 @@ def read_lsdyna(path, units: str = "SI") -> Imported:
 
 def _ignore(deck, kw):
     if kw.name not in deck.ignored:
-        where = f"line {kw.line}" if Path(kw.file) == deck.path else f"{Path(kw.file).name} line {kw.line}"
-        deck.ignored[kw.name] = f"ignored: *{kw.name} ({where})"
+        deck.ignored[kw.name] = ignored_line(kw.name, kw.file, kw.line, deck.path)
     return True

@@ -5,9 +5,8 @@ AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, *AIRBAG_INTERACTION, *MAT_FABRIC (FLC, FAC, E
 """
 from __future__ import annotations
 
-import numpy as np
-
 from .abaqus_fluid import R_U
+from .deck_io import faces_area
 from .lsdyna_cards import fields
 from .write_scene import obj_text
 
@@ -37,14 +36,7 @@ def _faces(deck, kw, sid, sidtyp):
 
 
 def _area(deck, faces):
-    total = 0.0
-    for f in faces:
-        p = np.array([[deck.si(c, "length") for c in deck.nodes[n]] for n in f])
-        for k in range(1, len(f) - 1):
-            total += 0.5 * float(np.linalg.norm(np.cross(p[k] - p[0], p[k + 1] - p[0])))
-    return total
-
-
+    return faces_area(faces, {n: [deck.si(c, "length") for c in deck.nodes[n]] for f in faces for n in f})
 
 
 def _id_cards(kw):

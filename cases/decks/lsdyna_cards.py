@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import SceneError
-from .abaqus_lexer import deck_error
+from .deck_io import deck_error, deck_lines, include_target
 
 __all__ = ["DynaKeyword", "read_dyna", "fields"]
 
@@ -61,10 +61,7 @@ def fields(kw: DynaKeyword, card, widths, kinds):
 
 
 def _lines(path: Path, stack):
-    try:
-        raw = path.read_text(errors="replace").splitlines()
-    except OSError as exc:
-        raise SceneError(path, "", f"cannot read the deck: {exc.strerror or exc}") from None
+    raw = deck_lines(path)
     i = 0
     while i < len(raw):
         lineno, text = i + 1, raw[i].rstrip("\n")
@@ -76,11 +73,7 @@ def _lines(path: Path, stack):
                 raise deck_error(path, lineno, "INCLUDE", "missing the card with the file name")
             name = raw[i].strip()
             i += 1
-            target = (path.parent / name).resolve()
-            if not target.is_file():
-                raise deck_error(path, lineno, "INCLUDE", f"the file {name!r} does not exist")
-            if target in stack:
-                raise deck_error(path, lineno, "INCLUDE", f"{name!r} includes itself")
+            target = include_target(path, lineno, name, stack)
             yield from _lines(target, stack + (target,))
             continue
         yield path, lineno, text

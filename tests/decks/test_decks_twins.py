@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import tests.closed_forms as cf
-from cases.decks import deck_scene, import_deck
+from cases.decks import deck_scene
 from cases.library import DECK_TWINS, HERE
 from cases.runner import run_scene
 from cases.scene import load_scene
