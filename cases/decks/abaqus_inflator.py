@@ -1,12 +1,13 @@
 """Abaqus inflators -> [[cavity.inflator]] tables (Abaqus Keywords Reference: *FLUID INFLATOR, *FLUID INFLATOR
-PROPERTY, *FLUID INFLATOR MIXTURE, *FLUID INFLATOR ACTIVATION).
+PROPERTY, *FLUID INFLATOR MIXTURE, *FLUID INFLATOR ACTIVATION; Analysis User's Guide "Inflator definition").
 
 *FLUID INFLATOR PROPERTY data lines: inflation time, then per TYPE (Abaqus Scripting Reference,
 FluidInflatorProperty, "table data"): TEMPERATURE AND MASS — gas temperature, mass flow rate; TANK TEST — gas
 temperature, tank pressure (TANK VOLUME=); PRESSURE AND MASS — inflator pressure, mass flow rate (EFFECTIVE AREA=,
 DISCHARGE COEFFICIENT=); DUAL PRESSURE — inflator pressure, tank pressure (all three parameters). An inflator
-flows only once *FLUID INFLATOR ACTIVATION names it; INFLATION TIME AMPLITUDE maps step time to inflation time
-(ventsim reads a delay, a(t) = max(0, t − t0)); MASS FLOW AMPLITUDE multiplies the flow (a constant here).
+flows only once *FLUID INFLATOR ACTIVATION names it; the inflation time is the integral of its INFLATION TIME
+AMPLITUDE (a step from 0 to 1: a delay); MASS FLOW AMPLITUDE multiplies a prescribed flow (a constant here; ignored
+for TANK TEST and DUAL PRESSURE, as in Abaqus).
 """
 from __future__ import annotations
 
@@ -75,18 +76,30 @@ def _is_number(text):
 
 
 def _start(deck, act):
-    """Inflation delay t0 [deck time] from INFLATION TIME AMPLITUDE: a(t) = max(0, t − t0) on the step."""
+    """Inflation delay [deck time] from INFLATION TIME AMPLITUDE f: the inflation time is ∫₀ᵗ f dt (Analysis
+    User's Guide, "Inflator definition"), f typically a step from 0 to 1 at deployment. A tabular f that is 0 up
+    to t_a and 1 from t_b on gives ∫f = t − (t_a + t_b)/2 for t ≥ t_b: ventsim starts the inflator there."""
     name = act.label("INFLATION TIME AMPLITUDE")
     if name is None:
         return 0.0
-    t, a = deck.amplitude(name, act)
-    first = next((i for i, v in enumerate(a) if v > 0.0), None)
-    t0 = 0.0 if first is None else t[first] - a[first]
-    ok = all(abs(v - max(0.0, ti - t0)) <= 1e-9 * max(1.0, abs(ti)) for ti, v in zip(t, a))
-    if not ok or t0 < 0 or t[-1] < deck.step_end(act):
-        raise act.error(f"INFLATION TIME AMPLITUDE={name}: ventsim reads a delay a(t) = max(0, t - t0) that "
-                        "covers the whole step")
-    return t0
+    t, f = deck.amplitude(name, act)
+    zeros = [i for i, v in enumerate(f) if v == 0.0]
+    ones = [i for i, v in enumerate(f) if v == 1.0]
+    a = zeros[-1] if zeros else None
+    b = ones[0] if ones else None
+    ok = b is not None and ones == list(range(b, len(f))) and (a is None or (zeros == list(range(a + 1))
+                                                                              and b == a + 1))
+    if ok and a is not None and t[b] - t[a] > 1e-3 * deck.step_end(act):
+        ok = False  # a slow ramp is not a delay
+    if not ok:
+        raise act.error(f"INFLATION TIME AMPLITUDE={name}: ventsim reads a step from 0 to 1 (0 up to t_a, 1 from "
+                        "t_b = the next point on, t_b - t_a <= 0.001 x the step time)")
+    if a is None:
+        return 0.0
+    if t[b] > t[a]:
+        deck.notes.append(f"inflation time amplitude {name}: the ramp from {t[a]!r} to {t[b]!r} is read as a "
+                          f"delay of {(t[a] + t[b]) / 2!r} (exact from {t[b]!r} on)")
+    return 0.5 * (t[a] + t[b])
 
 
 def _scale(deck, act):
@@ -120,6 +133,9 @@ def _entry(deck, kw, prop, default_gas):
     entry["gas"], entry["gas_by_mole"] = _mixture(deck, prop["mixture"]) if "mixture" in prop else default_gas
     act = deck.inflator_activation[name]
     start, scale = _start(deck, act), _scale(deck, act)
+    if scale != 1.0 and scene_type in ("tank_test", "dual_pressure"):
+        deck.notes.append(f"inflator {name}: MASS FLOW AMPLITUDE is ignored for {prop['type']} (as in Abaqus)")
+        scale = 1.0
     if start:
         entry["start"] = deck.si(start, "time")
     if scale != 1.0:
