@@ -7,7 +7,7 @@ characters; value = SFA·(a + OFFA), SFO·(o + OFFO)), *MAT_FABRIC (card 3: AOPT
 *AIRBAG_SIMPLE_AIRBAG_MODEL (card 1: SID SIDTYP RBID VSCA PSCA VINI MWD SPSF; card 2: CV CP T LCID MU A PE RO),
 *AIRBAG_WANG_NEFSKE (card 2: CV CP T LCT LCMT TVOL LCDT IABT; card 3: C23 LCC23 A23 LCA23 CP23 LCCP23 AP23
 LCAP23; card 4: PE RO GC LCEFR POVER PPOP OPT KNKDN), *AIRBAG_INTERACTION (AB1 AB2 AREA SF PID LCID IFLOW),
-*CONTROL_TERMINATION (ENDTIM), *DATABASE_ABSTAT (DT).
+*AIRBAG_HYBRID (cases/decks/lsdyna_hybrid.py), *CONTROL_TERMINATION (ENDTIM), *DATABASE_ABSTAT (DT).
 
 The bag gas is one ideal gas of constant cp, cv (J/(kg K)): molar mass M = R_u/(cp − cv), molar cp = cp·M. The
 bag starts at the ambient PE and T = PE/(RO·(cp − cv)) (or IABT). Vents and fabric porosity are the isentropic
@@ -22,17 +22,16 @@ from ..errors import SceneError
 from .imported import Imported
 from .deck_io import ignored_line
 from .lsdyna_bags import bag_entries
-from .lsdyna_cards import fields, read_dyna
+from .lsdyna_cards import W10, fields, read_dyna
 from .units import unit_system
 from .write_scene import csv_text
 
 __all__ = ["read_lsdyna"]
 
-W10 = (10,) * 8
 MAPPED = {"KEYWORD", "TITLE", "END", "NODE", "ELEMENT_SHELL", "PART", "SET_PART_LIST", "SET_PART", "SET_SEGMENT",
           "DEFINE_CURVE", "DEFINE_CURVE_TITLE", "MAT_FABRIC", "MAT_034", "CONTROL_TERMINATION", "DATABASE_ABSTAT",
           "AIRBAG_INTERACTION"}
-BAGS = {"AIRBAG_SIMPLE_AIRBAG_MODEL", "AIRBAG_WANG_NEFSKE"}
+BAGS = {"AIRBAG_SIMPLE_AIRBAG_MODEL", "AIRBAG_WANG_NEFSKE", "AIRBAG_HYBRID"}
 
 
 class DynaDeck:
@@ -127,13 +126,14 @@ def read_lsdyna(path, units: str = "SI") -> Imported:
         base = kw.name[:-3] if kw.name.endswith("_ID") else kw.name
         if base in BAGS:
             deck.bags.append((base, kw))
-        elif base == "AIRBAG_HYBRID" or base.startswith("AIRBAG_"):
-            raise kw.error("not supported: ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE and "
-                           "*AIRBAG_INTERACTION")
+        elif base.startswith("AIRBAG_") and base != "AIRBAG_INTERACTION":
+            raise kw.error("not supported: ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, "
+                           "*AIRBAG_HYBRID and *AIRBAG_INTERACTION")
         elif not (_geometry(deck, kw) or kw.name not in MAPPED and _ignore(deck, kw)):
             _other(deck, kw)
     if not deck.bags:
-        raise SceneError(path, "", "no *AIRBAG_SIMPLE_AIRBAG_MODEL or *AIRBAG_WANG_NEFSKE: nothing to simulate")
+        raise SceneError(path, "", "no *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE or *AIRBAG_HYBRID: nothing "
+                                   "to simulate")
     if deck.end is None:
         raise SceneError(path, "", "no *CONTROL_TERMINATION (ENDTIM): the run has no end time")
     data = {"title": deck.title or f"imported from {path.name}", "time": {"end": deck.si(deck.end, "time")}}

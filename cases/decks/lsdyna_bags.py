@@ -7,12 +7,11 @@ from __future__ import annotations
 
 from .abaqus_fluid import R_U
 from .deck_io import faces_area
-from .lsdyna_cards import fields
+from .lsdyna_cards import W10, fields, refuse
+from .lsdyna_hybrid import hybrid_gas
 from .write_scene import obj_text
 
 __all__ = ["bag_entries"]
-
-W10 = (10,) * 8
 
 
 
@@ -62,12 +61,6 @@ def _mesh(deck, kw, name, faces):
     return file
 
 
-def _refuse(kw, card, names, values):
-    for n, v in zip(names, values):
-        if v not in (None, 0, 0.0):
-            raise kw.error(f"{n} = {v}: not supported (ventsim reads constant coefficients and areas)", card[1])
-
-
 def _wang_nefske(kw, cards):
     """Gas, inflator curves, vents and ambient of card 2-4 of *AIRBAG_WANG_NEFSKE / card 2 of the simple model."""
     if kw.name.startswith("AIRBAG_SIMPLE"):
@@ -75,11 +68,11 @@ def _wang_nefske(kw, cards):
         return dict(cv=cv, cp=cp, t=t, lct=None, lcmt=lcid, vents=[("vent", mu, a)], pe=pe, ro=ro, ppop=None,
                     iabt=None)
     cv, cp, t, lct, lcmt, tvol, lcdt, iabt = fields(kw, cards[1], W10, "fffiifif")
-    _refuse(kw, cards[1], ("TVOL", "LCDT"), (tvol, lcdt))
+    refuse(kw, cards[1], ("TVOL", "LCDT"), (tvol, lcdt))
     c23, lcc23, a23, lca23, cp23, lccp23, ap23, lcap23 = fields(kw, cards[2], W10, "fififif" + "i")
-    _refuse(kw, cards[2], ("LCC23", "LCA23", "LCCP23", "LCAP23"), (lcc23, lca23, lccp23, lcap23))
+    refuse(kw, cards[2], ("LCC23", "LCA23", "LCCP23", "LCAP23"), (lcc23, lca23, lccp23, lcap23))
     pe, ro, gc, lcefr, pover, ppop, opt, knkdn = fields(kw, cards[3], W10, "fffiffii")
-    _refuse(kw, cards[3], ("LCEFR", "POVER", "OPT", "KNKDN"), (lcefr, pover, opt, knkdn))
+    refuse(kw, cards[3], ("LCEFR", "POVER", "OPT", "KNKDN"), (lcefr, pover, opt, knkdn))
     return dict(cv=cv, cp=cp, t=t, lct=lct, lcmt=lcmt, vents=[("vent", c23, a23), ("porosity", cp23, ap23)], pe=pe,
                 ro=ro, ppop=ppop, iabt=iabt)
 
@@ -90,7 +83,8 @@ def _inflator(deck, kw, name, g):
         return []
     t, m = deck.curve(kw, g["lcmt"], "LCMT", "time", "mass_flow")
     entry = {"name": "inflator", "type": "mass_temperature",
-             "mass_flow": deck.table_file(f"{name}_mass_flow", t, m, "time [s],mass flow [kg/s]")}
+             "mass_flow": deck.table_file(f"{name}_mass_flow", t, m, "time [s],mass flow [kg/s]"),
+             "gas": {f"{name}_gas": 1.0}}  # the bag's gas (the scene's default inflator gas is N2)
     if g["t"]:
         entry["temperature"] = float(g["t"])
     elif g["lct"]:
@@ -126,16 +120,8 @@ def _fabric(deck, name, faces):
     return out
 
 
-def _bag(deck, kw, number):
-    bid, cards = _id_cards(kw)
-    if len(cards) < (2 if kw.name.startswith("AIRBAG_SIMPLE") else 4):
-        raise kw.error("missing cards (see the LS-DYNA Keyword User's Manual for this keyword)")
-    sid, sidtyp, _, vsca, psca, vini, _, _ = fields(kw, cards[0], W10, "iiifffff")
-    for n, v, ok in (("VSCA", vsca, 1.0), ("PSCA", psca, 1.0), ("VINI", vini, 0.0)):
-        if v not in (None, ok):
-            raise kw.error(f"{n} = {v}: ventsim reads {n} = {ok} only", cards[0][1])
-    name = f"bag{bid if bid is not None else number}"
-    faces = _faces(deck, kw, sid, sidtyp)
+def _constant_gas(deck, kw, cards, name):
+    """([species], cavity state, vents, pop pressure) of the simple and Wang–Nefske models: one gas, constant cp."""
     g = _wang_nefske(kw, cards)
     r = deck.si(g["cp"] or 0.0, "specific_heat") - deck.si(g["cv"] or 0.0, "specific_heat")
     if not r > 0:
@@ -145,30 +131,53 @@ def _bag(deck, kw, number):
     if not (pe > 0 and (ro > 0 or g["iabt"])):
         raise kw.error("PE and RO (ambient pressure and density) must be > 0")
     species = {"name": f"{name}_gas", "molar_mass": M, "cp": [deck.si(g["cp"], "specific_heat") * M]}
-    gas = {species["name"]: 1.0}
-    cavity = {"name": name, "pressure": pe, "temperature": float(g["iabt"]) if g["iabt"] else pe / (ro * r),
-              "gas": gas, "energy": "adiabatic", "mesh": _mesh(deck, kw, name, faces)}
+    state = {"pressure": pe, "temperature": float(g["iabt"]) if g["iabt"] else pe / (ro * r),
+             "gas": {species["name"]: 1.0}}
     inflators = _inflator(deck, kw, name, g)
     if inflators:
-        cavity["inflator"] = inflators
-    exchanges = []
-    for vent, cd, area in g["vents"]:
+        state["inflator"] = inflators
+    return [species], state, g["vents"], g["ppop"]
+
+
+def _vents(deck, kw, name, vents, ppop):
+    out = []
+    for vent, cd, area in vents:
         if area and area < 0:
             raise kw.error(f"{vent} area {area} < 0 (an area curve): not supported")
         if area:
             e = {"name": f"{name}_{vent}", "from": name, "to": "ambient", "law": "orifice",
                  "area": deck.si(area, "area"), "discharge_coefficient": cd if cd is not None else 1.0}
-            if vent == "vent" and g["ppop"]:
-                e["pop_pressure"] = deck.si(g["ppop"], "pressure")
-            exchanges.append(e)
-    exchanges += _fabric(deck, name, faces)
+            if vent == "vent" and ppop:
+                e["pop_pressure"] = deck.si(ppop, "pressure")
+            out.append(e)
+    return out
+
+
+def _bag(deck, base, kw, number):
+    """(id, [species], cavity, exchanges) of one control volume."""
+    bid, cards = _id_cards(kw)
+    if len(cards) < (2 if base == "AIRBAG_SIMPLE_AIRBAG_MODEL" else 4):
+        raise kw.error("missing cards (see the LS-DYNA Keyword User's Manual for this keyword)")
+    sid, sidtyp, _, vsca, psca, vini, _, _ = fields(kw, cards[0], W10, "iiifffff")
+    for n, v, ok in (("VSCA", vsca, 1.0), ("PSCA", psca, 1.0), ("VINI", vini, 0.0)):
+        if v not in (None, ok):
+            raise kw.error(f"{n} = {v}: ventsim reads {n} = {ok} only", cards[0][1])
+    name = f"bag{bid if bid is not None else number}"
+    faces = _faces(deck, kw, sid, sidtyp)
+    gas = hybrid_gas if base == "AIRBAG_HYBRID" else _constant_gas
+    species, state, vents, ppop = gas(deck, kw, cards, name)
+    cavity = {"name": name, **{k: state[k] for k in ("pressure", "temperature", "gas")}, "energy": "adiabatic",
+              "mesh": _mesh(deck, kw, name, faces)}
+    if "inflator" in state:
+        cavity["inflator"] = state["inflator"]
+    exchanges = _vents(deck, kw, name, vents, ppop) + _fabric(deck, name, faces)
     return bid if bid is not None else number, species, cavity, exchanges
 
 
 def _interactions(deck, ids):
     out = []
     for kw, card, (ab1, ab2, area, sf, pid, lcid, iflow) in deck.interactions:
-        _refuse(kw, card, ("PID", "LCID", "IFLOW"), (pid, lcid, iflow))
+        refuse(kw, card, ("PID", "LCID", "IFLOW"), (pid, lcid, iflow))
         for ab in (ab1, ab2):
             if ab not in ids:
                 raise kw.error(f"no airbag {ab} (airbags: {', '.join(map(str, ids))})", card[1])
@@ -180,10 +189,10 @@ def _interactions(deck, ids):
 def bag_entries(deck) -> dict:
     """The scene tables of every control volume, their vents and interactions, and the ambient."""
     species, cavities, exchanges, ids = [], [], [], {}
-    for number, (_, kw) in enumerate(deck.bags, start=1):
-        bid, sp, cav, ex = _bag(deck, kw, number)
+    for number, (base, kw) in enumerate(deck.bags, start=1):
+        bid, sp, cav, ex = _bag(deck, base, kw, number)
         ids[bid] = cav["name"]
-        species.append(sp)
+        species += sp
         cavities.append(cav)
         exchanges += ex
     pressures = {c["pressure"] for c in cavities}

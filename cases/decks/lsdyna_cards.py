@@ -15,7 +15,10 @@ from pathlib import Path
 from ..errors import SceneError
 from .deck_io import deck_error, deck_lines, include_target
 
-__all__ = ["DynaKeyword", "read_dyna", "fields"]
+__all__ = ["DynaKeyword", "read_dyna", "fields", "refuse", "W10"]
+
+#: eight fields of 10 characters, the default card
+W10 = (10,) * 8
 
 
 @dataclass
@@ -97,3 +100,9 @@ def read_dyna(path) -> list:
             raise deck_error(file, lineno, "", f"card before any keyword: {text.strip()[:40]!r}")
         current.cards.append((str(file), lineno, text))
     return blocks
+
+
+def refuse(kw, card, names, values):
+    for n, v in zip(names, values):
+        if v not in (None, 0, 0.0):
+            raise kw.error(f"{n} = {v}: not supported (ventsim reads constant coefficients and areas)", card[1])

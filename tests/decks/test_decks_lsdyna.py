@@ -3,7 +3,11 @@ from __future__ import annotations
 
 import pytest
 
-from cases.decks import import_deck
+import numpy as np
+
+from cases.decks import deck_scene, import_deck
+from cases.decks.abaqus_fluid import R_U
+from cases.runner import run_scene
 from cases.errors import SceneError
 from cases.library import HERE
 
@@ -32,11 +36,36 @@ def test_free_format_card_reads_like_fixed_width(tmp_path):
     assert import_deck(write(tmp_path, fixed)).data == import_deck(HERE / "decks" / "wang_nefske_bag.k").data
 
 
-def test_hybrid_airbag_is_refused_by_name(tmp_path):
-    text = BAG.replace("*AIRBAG_WANG_NEFSKE_ID", "*AIRBAG_HYBRID_ID")
+def test_particle_airbag_is_refused_by_name(tmp_path):
+    text = BAG.replace("*AIRBAG_WANG_NEFSKE_ID", "*AIRBAG_PARTICLE_ID")
     deck = write(tmp_path, text)
-    assert error_of(deck) == (f"{deck}: line {line_of(text, '*AIRBAG_HYBRID_ID')}: *AIRBAG_HYBRID_ID: not supported: "
-                              "ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE and *AIRBAG_INTERACTION")
+    assert error_of(deck) == (f"{deck}: line {line_of(text, '*AIRBAG_PARTICLE_ID')}: *AIRBAG_PARTICLE_ID: not "
+                              "supported: ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, "
+                              "*AIRBAG_HYBRID and *AIRBAG_INTERACTION")
+
+
+def _hybrid_of_the_wang_nefske_bag():
+    """The Wang–Nefske bag written as *AIRBAG_HYBRID with one gas: MW = R_u/(cp − cv), A = cp·MW, the same
+    ambient state (ATMOST = PE/(RO·R)), a constant 600 K temperature curve and PVENT = PPOP."""
+    f10 = lambda *v: "".join(f"{x:>10}" for x in v)
+    mw, t0 = R_U / 287.0, 101325.0 / (1.204 * 287.0)
+    start = BAG.index("*AIRBAG_WANG_NEFSKE_ID")
+    cards = ["*AIRBAG_HYBRID_ID", f10(1) + "driver bag", f10(1, 1, 0, "1.0", "1.0", "0.0", "0.0", "0.0"),
+             f"{t0!r}, 101325.0, 1.204, 1.0, 1.0, 0.0",
+             f10("0.7", 0, "5.0e-4", 0, "0.0", 0, "0.0", 0),
+             f10(0, "1.0e4", 1, 0, 0, 0),
+             f"10, 20, 0, {mw!r}, 1.0, {1005.0 * mw!r}, 0.0, 0.0", f10("1.0"),
+             "*DEFINE_CURVE", f10(20), f"{0.0!r:>20}{600.0!r:>20}", f"{1.0!r:>20}{600.0!r:>20}", "*END"]
+    return BAG[:start] + "\n".join(cards) + "\n"
+
+
+def test_hybrid_with_one_gas_is_the_wang_nefske_bag(tmp_path):
+    hybrid = deck_scene(write(tmp_path, _hybrid_of_the_wang_nefske_bag()), tmp_path / "h" / "s.toml")[0]
+    wang = deck_scene(HERE / "decks" / "wang_nefske_bag.k", tmp_path / "w" / "s.toml")[0]
+    h, w = run_scene(hybrid), run_scene(wang)
+    assert h.columns == w.columns
+    scale = np.max(np.abs(w.history), axis=0)
+    assert np.max(np.abs(h.history - w.history) / scale) <= 1e-12
 
 
 def test_missing_curve(tmp_path):

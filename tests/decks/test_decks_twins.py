@@ -61,6 +61,7 @@ def test_wang_nefske_gas_and_initial_state(runs):
     assert math.isclose(species["cp"][0] / species["molar_mass"], 1005.0, rel_tol=1e-14)
     assert math.isclose(deck.column("bag1.temperature")[0], 101325.0 / (1.204 * 287.0), rel_tol=1e-14)
     assert math.isclose(deck.column("bag1.volume")[0], 0.4 * 0.4 * 0.375, rel_tol=1e-13)
+    assert imported.data["cavity"][0]["inflator"][0]["gas"] == {"bag1_gas": 1.0}  # the bag's own gas
     fabric = next(e for e in imported.data["exchange"] if "fabric" in e["name"])
     assert math.isclose(fabric["area"], 0.002 * 0.4 * 0.4, rel_tol=1e-13)  # FAC x area of the porous part
     assert fabric["discharge_coefficient"] == 0.5  # FLC
