@@ -85,6 +85,10 @@ def _motion(deck, ref, kw):
             raise bcs[dof][3].error(f"rotation of rigid body node {ref} (dof {dof}): ventsim prescribes "
                                     "translation only", bcs[dof][4])
     moving = {dof: bcs[dof] for dof in (1, 2, 3) if dof in bcs and bcs[dof][1] != 0.0}
+    for tkw in deck.transforms:
+        if moving and ref in deck.mesh.nsets.get(tkw.label("NSET") or "", ()):
+            raise tkw.error(f"rigid body node {ref} moves along transformed directions: ventsim reads *BOUNDARY "
+                            "in global axes")
     if not moving:
         if any(dof not in bcs for dof in (1, 2, 3)):
             deck.notes.append(f"rigid body of node {ref} ({kw.label('ELSET')}) has free translations: ventsim holds "

@@ -144,8 +144,13 @@ def cavity_entry(deck, kw, volume_entry):
     gas, by_mole, kind = _composition(deck, kw)
     p_amb = kw.number("AMBIENT PRESSURE", 0.0)
     gauge, _ = deck.initial_pressure.get(node, (0.0, 0))
-    theta, _ = deck.initial_temperature.get(node, (0.0, 0))
-    entry = {"name": name, "pressure": deck.si(gauge + p_amb, "pressure"), "temperature": deck.kelvin(theta, kw)}
+    if node in deck.initial_temperature or kind == "gas":
+        temperature = deck.kelvin(deck.initial_temperature.get(node, (0.0, 0))[0], kw)  # Abaqus default θ = 0
+    else:
+        temperature = 293.15
+        deck.notes.append(f"cavity {name}: no initial TEMPERATURE on the reference node: the liquid is at 293.15 K "
+                          "(used only with *FLUID EXPANSION)")
+    entry = {"name": name, "pressure": deck.si(gauge + p_amb, "pressure"), "temperature": temperature}
     if kind == "gas":
         entry.update(gas=gas, gas_by_mole=by_mole, energy="adiabatic" if kw.param("ADIABATIC") else "isothermal")
     entry.update(volume_entry(kw))

@@ -1,9 +1,11 @@
 """The mesh of an Abaqus deck: *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE (Abaqus Keywords Reference, those
 sections), parsed here and not by meshio (meshio ends the process on element types it does not know, M3D4R).
 
-Only surface-like elements carry a cavity, a leakage surface or a rigid blocker: shells S3/S3R/S4/S4R,
-membranes M3D3/M3D4/M3D4R, surface elements SFM3D3/SFM3D4/SFM3D4R, rigid R3D3/R3D4. Other element types are
-kept by number and become an error only when a surface that ventsim needs uses them.
+Only surface-like elements carry a cavity, a leakage surface or a rigid blocker: shells S3/S3R/S4/S4R (and
+S4R5, STRI3, second-order S6/S8R by their corner nodes), membranes M3D3/M3D4/M3D4R (M3D6/M3D8/M3D8R/M3D9 by their
+corners), surface elements SFM3D3/SFM3D4/SFM3D4R (SFM3D6/SFM3D8/SFM3D8R), rigid R3D3/R3D4. Other element types
+(solids, beams, connectors) are kept by number, and so are surfaces on their faces: they become an error only
+when ventsim needs that surface (a cavity boundary, a leakage surface, a blocker).
 """
 from __future__ import annotations
 
@@ -13,9 +15,12 @@ from .deck_io import deck_error
 
 __all__ = ["Mesh", "Surface", "read_mesh", "SURFACE_ELEMENTS", "face_nodes"]
 
-#: element type -> number of corner nodes
-SURFACE_ELEMENTS = {"S3": 3, "S3R": 3, "S3RS": 3, "S4": 4, "S4R": 4, "S4RS": 4, "M3D3": 3, "M3D4": 4,
-                    "M3D4R": 4, "SFM3D3": 3, "SFM3D4": 4, "SFM3D4R": 4, "R3D3": 3, "R3D4": 4}
+#: element type -> (number of nodes, number of corner nodes, listed first)
+SURFACE_ELEMENTS = {**{t: (3, 3) for t in ("S3", "S3R", "S3RS", "STRI3", "M3D3", "SFM3D3", "R3D3")},
+                    **{t: (4, 4) for t in ("S4", "S4R", "S4RS", "S4R5", "M3D4", "M3D4R", "SFM3D4", "SFM3D4R", "R3D4")},
+                    **{t: (6, 3) for t in ("S6", "STRI65", "M3D6", "SFM3D6")},
+                    **{t: (8, 4) for t in ("S8R", "S8R5", "M3D8", "M3D8R", "SFM3D8", "SFM3D8R")},
+                    "S9R5": (9, 4), "M3D9": (9, 4), "M3D9R": (9, 4)}
 
 
 @dataclass
@@ -36,6 +41,7 @@ class Mesh:
     elements: dict = field(default_factory=dict)  # id -> node ids (surface elements)
     element_type: dict = field(default_factory=dict)  # id -> type
     other: dict = field(default_factory=dict)  # id -> (type, file, line) of element types ventsim cannot use
+    other_types: dict = field(default_factory=dict)  # type -> (file, line) of its first *ELEMENT
     nsets: dict = field(default_factory=dict)
     elsets: dict = field(default_factory=dict)
     surfaces: dict = field(default_factory=dict)
@@ -59,6 +65,8 @@ def _float(kw, text, d):
 
 
 def _node(mesh, kw):
+    if (kw.label("SYSTEM") or "R") != "R":
+        raise kw.error(f"SYSTEM={kw.label('SYSTEM')}: ventsim reads rectangular coordinates (SYSTEM=R) only")
     ids = []
     for d in kw.data:
         if len(d.fields) < 2:
@@ -89,17 +97,18 @@ def _joined(kw):
 
 def _element(mesh, kw):
     etype = kw.label("TYPE", required=True)
-    n = SURFACE_ELEMENTS.get(etype)
+    n, corners = SURFACE_ELEMENTS.get(etype, (None, None))
     ids = []
     for fields, d in _joined(kw):
         eid = _int(kw, fields[0], d)
         nodes = [_int(kw, f, d) for f in fields[1:] if f]
         if n is None:
             mesh.other[eid] = (etype, d.file, d.line)
+            mesh.other_types.setdefault(etype, (kw.file, kw.line))
         else:
             if len(nodes) != n:
                 raise kw.error(f"element {eid} of type {etype} needs {n} nodes, got {len(nodes)}", d.line)
-            mesh.elements[eid], mesh.element_type[eid] = tuple(nodes), etype
+            mesh.elements[eid], mesh.element_type[eid] = tuple(nodes[:corners]), etype
         ids.append(eid)
     if kw.label("ELSET"):
         mesh.elsets.setdefault(kw.label("ELSET"), []).extend(ids)
@@ -144,16 +153,9 @@ def _surface(mesh, kw):
         if kind == "NODE":
             surf.nodes.extend(mesh.nsets[label] if label in mesh.nsets else [_int(kw, label, d)])
             continue
-        if side not in (None, "SPOS", "SNEG"):
-            raise kw.error(f"face {side} of {label}: ventsim reads shell, membrane and surface-element faces "
-                           f"(SPOS, SNEG) only", d.line)
         elems = mesh.elsets[label] if label in mesh.elsets else [_int(kw, label, d)]
         for e in elems:
-            if e in mesh.other:
-                etype, file, line = mesh.other[e]
-                raise kw.error(f"element {e} ({etype}, {file} line {line}) has no surface faces ventsim reads; "
-                               f"use {', '.join(sorted(SURFACE_ELEMENTS))}", d.line)
-            if e not in mesh.elements:
+            if e not in mesh.elements and e not in mesh.other:
                 raise kw.error(f"{label}: no element {e}", d.line)
             surf.faces.append((e, side, d.line))
     mesh.surfaces[name] = surf
@@ -182,6 +184,13 @@ def face_nodes(mesh: Mesh, surface: Surface, *, outward: bool, file="", line=0) 
                          f"{surface.name} is node-based; ventsim needs an element-based surface here")
     faces = []
     for e, side, dline in surface.faces:
+        if side not in (None, "SPOS", "SNEG"):
+            raise deck_error(surface.file, dline, "SURFACE", f"{surface.name}: face {side} of element {e}: ventsim "
+                                                             "reads shell, membrane and surface-element faces (SPOS, SNEG) only")
+        if e in mesh.other:
+            etype, efile, eline = mesh.other[e]
+            raise deck_error(surface.file, dline, "SURFACE", f"{surface.name}: element {e} ({etype}, {efile} line "
+                                                             f"{eline}) is not a shell, membrane, surface or rigid element")
         nodes = mesh.elements[e]
         missing = [n for n in nodes if n not in mesh.nodes]
         if missing:

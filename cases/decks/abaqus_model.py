@@ -29,7 +29,7 @@ CONTACT = {"SURFACE INTERACTION", "BLOCKAGE", "SURFACE BEHAVIOR", "CONTACT PROPE
            "BOUNDARY"}
 #: keywords whose omission would change the model: an error, not an "ignored" line
 REFUSED = {"PART": "parts and instances", "INSTANCE": "parts and instances", "ASSEMBLY": "parts and instances",
-           "TRANSFORM": "transformed coordinates", "NGEN": "generated nodes", "NFILL": "generated nodes",
+"NGEN": "generated nodes", "NFILL": "generated nodes",
            "NCOPY": "copied nodes", "ELGEN": "generated elements", "FLUID LINK": "fluid links",
            "STATIC": "Abaqus/Standard steps", "FLUID FLUX": "fluid fluxes"}
 
@@ -47,7 +47,7 @@ class Deck:
         self.exchange_props, self.exchanges, self.exchange_activation = {}, [], {}
         self.interactions, self.assignments, self.rigid_bodies, self.boundaries, self.bodies = {}, [], [], {}, {}
         self.amplitudes, self.cavity_kws, self.time_end, self.output_interval, self.title = {}, [], None, None, ""
-        self.step_kw = None
+        self.step_kw, self.transforms = None, []
         self.mesh = None
 
     suggest = staticmethod(suggest)
@@ -188,6 +188,9 @@ def _read(deck, blocks):
             deck.ignore(kw, "damping acts on a dynamic body's contact force; deck bodies move as prescribed")
         elif kw.name == "FRICTION":
             deck.ignore(kw)
+        elif kw.name == "TRANSFORM":
+            deck.transforms.append(kw)
+            deck.ignore(kw, "local directions of nodal boundary conditions (refused on a moving rigid body)")
         else:
             parent = (None, None)
             if kw.name in EXCHANGE:
@@ -255,6 +258,9 @@ def read_abaqus(path, units: str = "SI") -> Imported:
     deck = Deck(path, units)
     blocks = read_keywords(path)
     deck.mesh = read_mesh(blocks)
+    for etype, (file, line) in deck.mesh.other_types.items():
+        deck.ignored[f"ELEMENT {etype}"] = ignored_line(f"ELEMENT, TYPE={etype}", file, line, path,
+                                                        "not a surface element (no cavity, vent or blocker)")
     _read(deck, blocks)
     if not deck.cavity_kws:
         raise SceneError(path, "", "no *FLUID CAVITY: nothing for ventsim to simulate")

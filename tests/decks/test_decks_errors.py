@@ -105,8 +105,16 @@ def test_inward_normals_are_an_error_at_the_cavity(tmp_path):
 def test_solid_element_faces_are_refused(tmp_path):
     solid = "*ELEMENT, TYPE=C3D8R, ELSET=BRICK\n 9, 1, 2, 3, 4, 5, 6, 7, 8\n"
     deck = write(tmp_path, STEM.replace("*SURFACE, NAME=WALL\n BOX, SPOS", solid + "*SURFACE, NAME=WALL\n BRICK, S1"))
-    assert error_of(deck) == (f"{deck}: line 13: *SURFACE: face S1 of BRICK: ventsim reads shell, membrane and "
-                              "surface-element faces (SPOS, SNEG) only")
+    assert error_of(deck) == (f"{deck}: line 13: *SURFACE: WALL: face S1 of element 9: ventsim reads shell, "
+                              "membrane and surface-element faces (SPOS, SNEG) only")
+
+
+def test_a_solid_surface_ventsim_does_not_need_is_no_error(tmp_path):
+    solid = "*ELEMENT, TYPE=C3D8R, ELSET=BRICK\n 9, 1, 2, 3, 4, 5, 6, 7, 8\n*SURFACE, NAME=IMPACTOR\n BRICK, S1\n"
+    imported = import_deck(write(tmp_path, STEM.replace("*SURFACE, NAME=WALL", solid + "*SURFACE, NAME=WALL")))
+    assert imported.data["cavity"][0]["mesh"] == "deck/cavity_tank.obj"
+    assert "ignored: *ELEMENT, TYPE=C3D8R (line 10): not a surface element (no cavity, vent or blocker)" in \
+        imported.ignored
 
 
 def test_second_step_is_refused(tmp_path):
