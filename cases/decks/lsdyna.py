@@ -73,8 +73,11 @@ def _geometry(deck, kw):
         for c in kw.cards:
             nid, x, y, z = fields(kw, c, (8, 16, 16, 16), "ifff")
             deck.nodes[nid] = (x or 0.0, y or 0.0, z or 0.0)
-    elif kw.name == "ELEMENT_SHELL":
-        for c in kw.cards:
+    elif kw.name.startswith("ELEMENT_SHELL"):
+        if kw.name not in ("ELEMENT_SHELL", "ELEMENT_SHELL_THICKNESS", "ELEMENT_SHELL_BETA"):
+            raise kw.error("ventsim reads *ELEMENT_SHELL, *ELEMENT_SHELL_THICKNESS and *ELEMENT_SHELL_BETA")
+        step = 1 if kw.name == "ELEMENT_SHELL" else 2  # the options add a thickness card per element
+        for c in kw.cards[::step]:
             eid, pid, *ns = fields(kw, c, (8,) * 6, "iiiiii")
             if None in ns[:3]:
                 raise kw.error(f"element {eid}: expected EID PID N1 N2 N3 N4", c[1])

@@ -27,6 +27,8 @@ def _faces(deck, kw, sid, sidtyp):
         faces = [(None, s if len(s) == 3 or s[3] != s[2] else s[:3]) for s in deck.segment_sets[sid]]
     else:
         raise kw.error(f"SIDTYP={sidtyp}: expected 0 (segment set) or 1 (part set)")
+    if not faces:
+        raise kw.error(f"SID {sid} (SIDTYP {sidtyp or 0}): the set has no shell elements or segments")
     for _, f in faces:
         for n in f:
             if n not in deck.nodes:

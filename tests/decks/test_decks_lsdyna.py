@@ -95,3 +95,18 @@ def test_unknown_keyword_is_ignored_once(tmp_path):
     imported = import_deck(write(tmp_path, text))
     assert [i for i in imported.ignored if "TIMESTEP" in i] == \
         [f"ignored: *CONTROL_TIMESTEP (line {line_of(text, '*CONTROL_TIMESTEP')})"]
+
+
+def test_shell_thickness_option_reads_the_same_bag(tmp_path):
+    start, end = BAG.index("*ELEMENT_SHELL"), BAG.index("*PART")
+    cards = [c for c in BAG[start:end].splitlines()[1:] if not c.startswith("$")]
+    thick = "*ELEMENT_SHELL_THICKNESS\n" + "".join(f"{c}\n{'0.0004':>16}\n" for c in cards)
+    imported = import_deck(write(tmp_path, BAG[:start] + thick + BAG[end:]))
+    assert imported.data == import_deck(HERE / "decks" / "wang_nefske_bag.k").data
+
+
+def test_empty_part_set(tmp_path):
+    text = BAG.replace("*SET_PART_LIST\n         1\n         1         2", "*SET_PART_LIST\n         1\n         7")
+    deck = write(tmp_path, text)
+    assert error_of(deck) == (f"{deck}: line {line_of(text, '*AIRBAG_WANG_NEFSKE_ID')}: *AIRBAG_WANG_NEFSKE_ID: "
+                              "SID 1 (SIDTYP 1): the set has no shell elements or segments")
