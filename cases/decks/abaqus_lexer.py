@@ -8,11 +8,13 @@ case sensitive (labels are folded to upper case, as Abaqus does for unquoted lab
 
 ``*INCLUDE, INPUT=file`` is expanded in place (relative to the including file). ``*PARAMETER`` data lines
 ``name = expression`` define parameters that ``<name>`` substitutes in later keyword and data lines (Keywords
-Reference, *PARAMETER); expressions use numbers, + - * / ** and parentheses and the parameters defined before.
+Reference, *PARAMETER); expressions use numbers, + - * / **, parentheses, pi, math functions (sqrt, exp, sin, ...)
+and the parameters defined before.
 """
 from __future__ import annotations
 
 import ast
+import math
 import operator
 import re
 from dataclasses import dataclass, field
@@ -24,6 +26,10 @@ from .deck_io import deck_error, deck_lines, include_target
 __all__ = ["Keyword", "DataLine", "read_keywords", "deck_error"]
 
 _SUBST = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
+#: functions a *PARAMETER expression may call (Abaqus evaluates them as Python)
+_FUNCTIONS = {name: getattr(math, name) for name in ("sqrt", "exp", "log", "log10", "sin", "cos", "tan", "asin",
+                                                     "acos", "atan", "atan2", "radians", "degrees", "hypot")}
+_FUNCTIONS.update(abs=abs, min=min, max=max, pi=math.pi)
 _OPS = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
         ast.Pow: operator.pow, ast.USub: operator.neg, ast.UAdd: operator.pos}
 
@@ -83,20 +89,27 @@ def _evaluate(expr: str, params: dict, file, line):
             return node.value
         if isinstance(node, ast.Name) and node.id in params:
             return params[node.id]
+        if isinstance(node, ast.Name) and node.id == "pi":
+            return math.pi
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and callable(_FUNCTIONS.get(node.func.id))
+                and not node.keywords):
+            return _FUNCTIONS[node.func.id](*(ev(a) for a in node.args))
         if isinstance(node, ast.BinOp) and type(node.op) in _OPS:
             return _OPS[type(node.op)](ev(node.left), ev(node.right))
         if isinstance(node, ast.UnaryOp) and type(node.op) in _OPS:
             return _OPS[type(node.op)](ev(node.operand))
         if isinstance(node, ast.Name):
             raise deck_error(file, line, "PARAMETER", f"unknown parameter {node.id!r}")
-        raise deck_error(file, line, "PARAMETER", f"unsupported expression {expr!r} (numbers, parameters and "
-                                                  "+ - * / ** only)")
+        raise deck_error(file, line, "PARAMETER", f"unsupported expression {expr!r} (numbers, parameters, "
+                                                  "+ - * / **, pi and math functions such as sqrt only)")
 
     try:
         return ev(ast.parse(expr.strip(), mode="eval"))
+    except SceneError:
+        raise
     except SyntaxError:
         raise deck_error(file, line, "PARAMETER", f"cannot read the expression {expr!r}") from None
-    except (ZeroDivisionError, OverflowError) as exc:
+    except (ZeroDivisionError, OverflowError, ValueError, TypeError) as exc:
         raise deck_error(file, line, "PARAMETER", f"{expr!r}: {exc}") from None
 
 

@@ -167,3 +167,20 @@ def test_units_mm_t_s_give_the_si_history(tmp_path):
     scale = np.max(np.abs(si.history), axis=0)
     assert np.max(np.abs(mm.history - si.history) / scale) <= 1e-9
     assert re.search("LX = 500", mm_deck.read_text())
+
+
+def test_parameter_expressions_with_functions(tmp_path):
+    deck = write(tmp_path, STEM.replace("LZ = 0.3", "LZ = sqrt(0.09) * cos(0.0)"))
+    r = run_scene(deck_scene(deck, tmp_path / "o" / "s.toml")[0])
+    assert abs(r.column("tank.volume")[0] / 0.06 - 1) <= 1e-14
+
+
+def test_cli_run_reports_the_ignored_keywords_in_summary(tmp_path, capsys):
+    import json
+
+    deck = write(tmp_path, STEM.replace("*STEP", "*MATERIAL, NAME=X\n*STEP"))
+    assert main(["run", str(deck), "--out", str(tmp_path / "out")]) == 0
+    assert "ventsim: deck.inp: ignored: *MATERIAL (line 27)" in capsys.readouterr().err.splitlines()
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["modelled"]["deck"]["ignored"] == ["ignored: *MATERIAL (line 27)"]
+    assert (tmp_path / "out" / "scene" / "deck.toml").is_file()
