@@ -14,6 +14,7 @@ from ..schema import suggest
 from . import abaqus_bodies, abaqus_exchange, abaqus_fluid, abaqus_inflator
 from .abaqus_lexer import read_keywords
 from .abaqus_mesh import face_nodes, read_mesh
+from .abaqus_parts import flatten_parts
 from .deck_io import faces_area, ignored_line
 from .imported import Imported
 from .units import unit_system
@@ -28,10 +29,9 @@ EXCHANGE = {"FLUID EXCHANGE", "FLUID EXCHANGE PROPERTY", "FLUID EXCHANGE ACTIVAT
 CONTACT = {"SURFACE INTERACTION", "BLOCKAGE", "SURFACE BEHAVIOR", "CONTACT PROPERTY ASSIGNMENT", "RIGID BODY",
            "BOUNDARY"}
 #: keywords whose omission would change the model: an error, not an "ignored" line
-REFUSED = {"PART": "parts and instances", "INSTANCE": "parts and instances", "ASSEMBLY": "parts and instances",
-"NGEN": "generated nodes", "NFILL": "generated nodes",
-           "NCOPY": "copied nodes", "ELGEN": "generated elements", "FLUID LINK": "fluid links",
-           "STATIC": "Abaqus/Standard steps", "FLUID FLUX": "fluid fluxes"}
+REFUSED = {"NGEN": "generated nodes", "NFILL": "generated nodes", "NCOPY": "copied nodes",
+           "ELGEN": "generated elements", "FLUID LINK": "fluid links", "STATIC": "Abaqus/Standard steps",
+           "FLUID FLUX": "fluid fluxes"}
 
 
 class Deck:
@@ -172,8 +172,7 @@ def _read(deck, blocks):
     parent = (None, None)  # (family, name) of the keyword that sub-options follow
     for kw in blocks:
         if kw.name in REFUSED:
-            raise kw.error(f"{REFUSED[kw.name]} are not supported: flatten the deck (nodes and elements at the "
-                           "top level)")
+            raise kw.error(f"{REFUSED[kw.name]} are not supported")
         if kw.name == "SYSTEM" and any(f not in ("", "0", "0.", "0.0") for d in kw.data for f in d.fields):
             raise kw.error("a shifted or rotated *SYSTEM is not supported")
         fam = _family(kw.name)
@@ -256,7 +255,7 @@ def read_abaqus(path, units: str = "SI") -> Imported:
     """Read the Abaqus deck at ``path`` (values in ``units``) into an :class:`Imported` scene."""
     path = Path(path)
     deck = Deck(path, units)
-    blocks = read_keywords(path)
+    blocks = flatten_parts(read_keywords(path))
     deck.mesh = read_mesh(blocks)
     for etype, (file, line) in deck.mesh.other_types.items():
         deck.ignored[f"ELEMENT {etype}"] = ignored_line(f"ELEMENT, TYPE={etype}", file, line, path,
