@@ -23,8 +23,27 @@ from pathlib import Path
 from ..errors import SceneError
 from .deck_io import deck_error, deck_lines, include_target
 
-__all__ = ["Keyword", "DataLine", "read_keywords", "deck_error"]
+__all__ = ["Keyword", "DataLine", "read_keywords", "deck_error", "keyword_name", "KEYWORDS"]
 
+#: keywords ventsim reads or refuses by name; "blanks on a keyword line are ignored" and keywords "need not be
+#: spelled out completely" (Analysis User's Guide, "Input syntax rules"): a line's keyword is matched without
+#: blanks, exactly or as the unique abbreviation of one of these
+KEYWORDS = ("HEADING", "PARAMETER", "INCLUDE", "NODE", "ELEMENT", "NSET", "ELSET", "SURFACE", "SYSTEM", "PART",
+            "END PART", "ASSEMBLY", "END ASSEMBLY", "INSTANCE", "END INSTANCE", "PHYSICAL CONSTANTS",
+            "FLUID BEHAVIOR", "MOLECULAR WEIGHT", "CAPACITY", "FLUID DENSITY", "FLUID BULK MODULUS",
+            "FLUID EXPANSION", "FLUID CAVITY", "INITIAL CONDITIONS", "FLUID EXCHANGE", "FLUID EXCHANGE PROPERTY",
+            "FLUID EXCHANGE ACTIVATION", "FLUID INFLATOR", "FLUID INFLATOR PROPERTY", "FLUID INFLATOR MIXTURE",
+            "FLUID INFLATOR ACTIVATION", "AMPLITUDE", "CONTACT PROPERTY ASSIGNMENT", "SURFACE INTERACTION",
+            "BLOCKAGE", "SURFACE BEHAVIOR", "CONTACT DAMPING", "FRICTION", "RIGID BODY", "BOUNDARY", "TRANSFORM",
+            "STEP", "DYNAMIC", "END STEP", "OUTPUT", "NGEN", "NFILL", "NCOPY", "ELGEN", "FLUID LINK", "STATIC",
+            "FLUID FLUX", "CONTACT", "MATERIAL")
+_KEYWORDS = {k.replace(" ", ""): k for k in KEYWORDS}
+#: parameter values of more than one word, matched without blanks
+VALUES = ("FLUID PRESSURE", "TEMPERATURE AND MASS", "TANK TEST", "PRESSURE AND MASS", "DUAL PRESSURE",
+          "MASS FRACTION", "MOLAR FRACTION", "FABRIC LEAKAGE", "MASS RATE LEAKAGE", "VOLUME RATE LEAKAGE",
+          "MASS FLUX", "VOLUME FLUX", "BULK VISCOSITY", "ENERGY FLUX", "ENERGY RATE LEAKAGE", "SMOOTH STEP",
+          "EQUALLY SPACED", "STEP TIME", "TOTAL TIME")
+_VALUES = {v.replace(" ", ""): v for v in VALUES}
 _SUBST = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
 #: functions a *PARAMETER expression may call (Abaqus evaluates them as Python)
 _FUNCTIONS = {name: getattr(math, name) for name in ("sqrt", "exp", "log", "log10", "sin", "cos", "tan", "asin",
@@ -58,19 +77,21 @@ class Keyword:
         return deck_error(self.file, self.line if line is None else line, self.name, message)
 
     def param(self, name: str, default=None):
-        return self.params.get(name, default)
+        return self.params.get(name.replace(" ", ""), default)
 
     def label(self, name: str, required: bool = False) -> str | None:
-        """A parameter whose value is a label (upper case); ``required`` raises when it is missing."""
-        value = self.params.get(name)
+        """A parameter whose value is a label or a choice (upper case, blanks removed; a known value of several
+        words with its blanks, e.g. ``FLUID PRESSURE``); ``required`` raises when it is missing."""
+        value = self.param(name)
         if value is None or value is True:
             if required:
                 raise self.error(f"missing required parameter {name}=")
             return None
-        return value.upper()
+        value = value.upper().replace(" ", "")
+        return _VALUES.get(value, value)
 
     def number(self, name: str, default=None) -> float | None:
-        value = self.params.get(name)
+        value = self.param(name)
         if value is None:
             return default
         try:
@@ -122,9 +143,22 @@ def _substitute(text: str, params: dict, file, line, keyword: str) -> str:
     return _SUBST.sub(repl, text) if "<" in text else text
 
 
+def keyword_name(text: str) -> str:
+    """The canonical name of a keyword as written (blanks ignored, a unique abbreviation expanded).
+
+    >>> keyword_name("fluidcavity"), keyword_name("Fluid Exchange Activ"), keyword_name("MEMBRANE  SECTION")
+    ('FLUID CAVITY', 'FLUID EXCHANGE ACTIVATION', 'MEMBRANE SECTION')
+    """
+    compact = text.upper().replace(" ", "").replace("\t", "")
+    if compact in _KEYWORDS:
+        return _KEYWORDS[compact]
+    matches = [v for k, v in _KEYWORDS.items() if k.startswith(compact)]
+    return matches[0] if len(matches) == 1 and len(compact) >= 4 else " ".join(text.upper().split())
+
+
 def _parse_keyword_line(text: str, file, line) -> tuple[str, dict]:
     parts = [p.strip() for p in text[1:].split(",")]
-    name = " ".join(parts[0].upper().split())
+    name = keyword_name(parts[0])
     if not name:
         raise deck_error(file, line, "", "a '*' with no keyword name")
     params = {}
@@ -132,8 +166,9 @@ def _parse_keyword_line(text: str, file, line) -> tuple[str, dict]:
         if not p:
             continue
         k, eq, v = p.partition("=")
-        k = " ".join(k.upper().split())
-        params[k] = v.strip().strip('"') if eq else True
+        k = k.upper().replace(" ", "")
+        v = v.strip()
+        params[k] = (v.strip('"') if v.startswith('"') or k == "INPUT" else v.replace(" ", "")) if eq else True
     return name, params
 
 
@@ -148,7 +183,7 @@ def _lines(path: Path, stack: tuple):
             while t.endswith(",") and i < len(raw) and not raw[i].lstrip().startswith("*"):
                 t += raw[i].strip()
                 i += 1
-            if " ".join(t.lstrip()[1:].split(",")[0].upper().split()) == "INCLUDE":
+            if keyword_name(t.lstrip()[1:].split(",")[0]) == "INCLUDE":
                 _, params = _parse_keyword_line(t.lstrip(), path, lineno)
                 name = params.get("INPUT")
                 if not isinstance(name, str) or not name:

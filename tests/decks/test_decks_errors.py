@@ -184,3 +184,17 @@ def test_cli_run_reports_the_ignored_keywords_in_summary(tmp_path, capsys):
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["modelled"]["deck"]["ignored"] == ["ignored: *MATERIAL (line 27)"]
     assert (tmp_path / "out" / "scene" / "deck.toml").is_file()
+
+
+def test_blanks_case_and_abbreviations_on_keyword_lines(tmp_path):
+    """'Blanks on a keyword line are ignored', keywords and parameters are not case sensitive and keywords may be
+    abbreviated (Analysis User's Guide, "Input syntax rules"): the deck below is the STEM deck."""
+    text = STEM.replace("*FLUID CAVITY, NAME=TANK, BEHAVIOR=N2, REF NODE=REF, SURFACE=WALL, ADIABATIC, AMBIENT "
+                        "PRESSURE=1.0e5", "*fluidcavity, name = tank, behavior=n2, refnode=ref, surface=wall, "
+                        "adiabatic, ambientpressure=1.0e5")
+    text = text.replace("*INITIAL CONDITIONS, TYPE=FLUID PRESSURE", "*Initial Cond, type=FluidPressure")
+    text = text.replace("*FLUID EXCHANGE ACTIVATION", "*Fluid Exchange Activ")
+    assert text != STEM
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    assert import_deck(write(tmp_path / "a", text)).data == import_deck(write(tmp_path / "b", STEM)).data
