@@ -31,13 +31,19 @@ def import_deck(path, units: str = "SI") -> Imported:
     if not path.is_file():
         raise SceneError(path, "", "deck file does not exist")
     kind = DECK_SUFFIXES.get(path.suffix.lower())
+    if kind is None:
+        raise SceneError(path, "", f"not a deck: expected one of {', '.join(DECK_SUFFIXES)}")
     if kind == "abaqus":
-        from .abaqus_model import read_abaqus
-        return read_abaqus(path, units)
-    if kind == "lsdyna":
-        from .lsdyna import read_lsdyna
-        return read_lsdyna(path, units)
-    raise SceneError(path, "", f"not a deck: expected one of {', '.join(DECK_SUFFIXES)}")
+        from .abaqus_model import read_abaqus as read
+    else:
+        from .lsdyna import read_lsdyna as read
+    try:
+        return read(path, units)
+    except SceneError:
+        raise
+    except Exception as exc:  # a reader bug must still reach the user as one line, not a traceback
+        raise SceneError(path, "", f"ventsim could not read this deck ({type(exc).__name__}: {exc}); please report "
+                                   "it with the deck") from None
 
 
 def deck_scene(path, toml_path, units: str = "SI", *, imported: Imported | None = None):

@@ -50,6 +50,8 @@ def read_contact(deck, kw, parent):
 def _clearance(deck, kw):
     law = kw.label("PRESSURE-OVERCLOSURE") or "HARD"
     if law == "EXPONENTIAL":
+        if not kw.data:
+            raise kw.error("EXPONENTIAL needs a data line 'clearance, pressure at zero clearance'")
         return deck.si(floats(kw, kw.data[0], 2, "clearance, pressure")[0], "length")
     if law == "TABULAR":
         rows = [floats(kw, d, 2, "pressure, overclosure") for d in kw.data]

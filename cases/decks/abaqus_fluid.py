@@ -159,7 +159,13 @@ def cavity_entry(deck, kw, volume_entry):
     if kind == "hydraulic":
         b = deck.behaviors[next(iter(gas)).upper()]
         K, dp = b["K"], gauge - b.get("p_ref", 0.0)
-        rho = b["density"] * math.exp(dp / K) if dp else b["density"]  # ρ = ρ_R·exp((p − p_R)/K)
+        if not (K > 0 and b["density"] > 0):
+            raise b["kw"].error(f"{next(iter(gas)).upper()}: the density and the bulk modulus must be > 0")
+        try:
+            rho = b["density"] * math.exp(dp / K) if dp else b["density"]  # ρ = ρ_R·exp((p − p_R)/K)
+        except OverflowError:
+            raise kw.error(f"the initial pressure is {dp / K:.3g} bulk moduli above the reference: the density "
+                           "overflows") from None
         entry.update(fluid="hydraulic", density=deck.si(rho, "density"), bulk_modulus=deck.si(K, "pressure"))
         if b.get("alpha"):
             entry["thermal_expansion"] = b["alpha"]

@@ -56,9 +56,16 @@ def _relabel(kw, prefix, offset, sets):
     return Keyword(kw.name, params, kw.file, kw.line, rows)
 
 
+def _floats(kw, d):
+    try:
+        return [float(x) if x else 0.0 for x in d.fields]
+    except ValueError:
+        raise kw.error(f"expected numbers, got {', '.join(d.fields)!r}", d.line) from None
+
+
 def _transform(kw):
-    """The 4x3 affine map of an *INSTANCE's data lines (translation, then rotation about a–b)."""
-    lines = [[float(x) if x else 0.0 for x in d.fields] for d in kw.data]
+    """The affine map of an *INSTANCE's data lines (translation, then rotation about a–b)."""
+    lines = [_floats(kw, d) for d in kw.data]
     shift = np.array((lines[0] + [0.0] * 3)[:3]) if lines else np.zeros(3)
     rot = np.eye(3)
     if len(lines) > 1:
@@ -77,7 +84,7 @@ def _transform(kw):
 def _place_nodes(kw, move):
     rows = []
     for d in kw.data:
-        xyz = [float(x) if x else 0.0 for x in d.fields[1:4]]
+        xyz = _floats(kw, DataLine(d.fields[1:4], d.file, d.line))
         p = move((xyz + [0.0] * 3)[:3])
         rows.append(DataLine((d.fields[0], *(repr(float(c)) for c in p)), d.file, d.line))
     return replace(kw, data=rows)

@@ -121,19 +121,26 @@ def _other(deck, kw):
         deck.title = kw.cards[0][2].strip()
 
 
+def _keyword(deck, kw):
+    base = kw.name[:-3] if kw.name.endswith("_ID") else kw.name
+    if base in BAGS:
+        deck.bags.append((base, kw))
+    elif base.startswith("AIRBAG_") and base != "AIRBAG_INTERACTION":
+        raise kw.error("not supported: ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, "
+                       "*AIRBAG_HYBRID and *AIRBAG_INTERACTION")
+    elif not (_geometry(deck, kw) or kw.name not in MAPPED and _ignore(deck, kw)):
+        _other(deck, kw)
+
+
 def read_lsdyna(path, units: str = "SI") -> Imported:
     """Read the LS-DYNA deck at ``path`` (values in ``units``) into an :class:`Imported` scene."""
     path = Path(path)
     deck = DynaDeck(path, units)
     for kw in read_dyna(path):
-        base = kw.name[:-3] if kw.name.endswith("_ID") else kw.name
-        if base in BAGS:
-            deck.bags.append((base, kw))
-        elif base.startswith("AIRBAG_") and base != "AIRBAG_INTERACTION":
-            raise kw.error("not supported: ventsim reads *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, "
-                           "*AIRBAG_HYBRID and *AIRBAG_INTERACTION")
-        elif not (_geometry(deck, kw) or kw.name not in MAPPED and _ignore(deck, kw)):
-            _other(deck, kw)
+        try:
+            _keyword(deck, kw)
+        except IndexError:
+            raise kw.error("missing cards (the LS-DYNA Keyword User's Manual gives this keyword's cards)") from None
     if not deck.bags:
         raise SceneError(path, "", "no *AIRBAG_SIMPLE_AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE or *AIRBAG_HYBRID: nothing "
                                    "to simulate")

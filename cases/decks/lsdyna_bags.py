@@ -192,7 +192,10 @@ def bag_entries(deck) -> dict:
     """The scene tables of every control volume, their vents and interactions, and the ambient."""
     species, cavities, exchanges, ids = [], [], [], {}
     for number, (base, kw) in enumerate(deck.bags, start=1):
-        bid, sp, cav, ex = _bag(deck, base, kw, number)
+        try:
+            bid, sp, cav, ex = _bag(deck, base, kw, number)
+        except IndexError:
+            raise kw.error("missing cards (the LS-DYNA Keyword User's Manual gives this keyword's cards)") from None
         ids[bid] = cav["name"]
         species += sp
         cavities.append(cav)
