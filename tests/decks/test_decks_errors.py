@@ -10,29 +10,11 @@ import pytest
 from cases.cli import main
 from cases.decks import deck_scene, import_deck
 from cases.errors import SceneError
-from cases.library import HERE
 from cases.runner import run_scene
 
-BOX = (HERE / "decks" / "box_mesh.inp").read_text()
-STEM = """*HEADING
-test deck
-*PARAMETER
-LX = 0.5
-LY = 0.4
-LZ = 0.3
-*INCLUDE, INPUT=box_mesh.inp
-*NODE, NSET=REF
- 100, 0.25, 0.2, 0.15
-*SURFACE, NAME=WALL
- BOX, SPOS
-*PHYSICAL CONSTANTS, ABSOLUTE ZERO=0., UNIVERSAL GAS CONSTANT=8.314462618
-*FLUID BEHAVIOR, NAME=N2
-*MOLECULAR WEIGHT
- 0.0280134
-*CAPACITY, TYPE=POLYNOMIAL
- 29.100619163
-*FLUID CAVITY, NAME=TANK, BEHAVIOR=N2, REF NODE=REF, SURFACE=WALL, ADIABATIC, AMBIENT PRESSURE=1.0e5
-*INITIAL CONDITIONS, TYPE=FLUID PRESSURE
+from .box_decks import BOX, head, write
+
+STEM = head("test deck") + """*INITIAL CONDITIONS, TYPE=FLUID PRESSURE
  REF, 4.0e5
 *INITIAL CONDITIONS, TYPE=TEMPERATURE
  REF, 300.
@@ -47,12 +29,6 @@ LZ = 0.3
  VENT
 *END STEP
 """
-
-
-def write(tmp_path, text, mesh=BOX, name="deck.inp"):
-    (tmp_path / "box_mesh.inp").write_text(mesh)
-    (tmp_path / name).write_text(text)
-    return tmp_path / name
 
 
 def error_of(path, units="SI"):

@@ -8,29 +8,12 @@ import pytest
 import tests.closed_forms as cf
 from cases.decks import deck_scene, import_deck
 from cases.errors import SceneError
-from cases.library import HERE
 from cases.runner import run_scene
 
-BOX = (HERE / "decks" / "box_mesh.inp").read_text()
-DECK = """*HEADING
-rigid box filled by an inflator
-*PARAMETER
-LX = 0.5
-LY = 0.4
-LZ = 0.3
-*INCLUDE, INPUT=box_mesh.inp
-*NODE, NSET=REF
- 100, 0.25, 0.2, 0.15
-*SURFACE, NAME=WALL
- BOX, SPOS
-*PHYSICAL CONSTANTS, ABSOLUTE ZERO=-273.15, UNIVERSAL GAS CONSTANT=8.314462618
-*FLUID BEHAVIOR, NAME=N2
-*MOLECULAR WEIGHT
- 0.0280134
-*CAPACITY, TYPE=POLYNOMIAL
- 29.100619163
-*FLUID CAVITY, NAME=TANK, BEHAVIOR=N2, REF NODE=REF, SURFACE=WALL, ADIABATIC, AMBIENT PRESSURE=1.0e5
-*INITIAL CONDITIONS, TYPE=TEMPERATURE
+from .box_decks import head
+from .box_decks import write as write_deck
+
+DECK = head("rigid box filled by an inflator", "-273.15") + """*INITIAL CONDITIONS, TYPE=TEMPERATURE
  REF, 26.85
 *FLUID INFLATOR PROPERTY, NAME=GEN, TYPE=TEMPERATURE AND MASS
  0.0, 326.85, 0.05
@@ -55,9 +38,7 @@ LZ = 0.3
 
 
 def write(tmp_path, text):
-    (tmp_path / "box_mesh.inp").write_text(BOX)
-    (tmp_path / "fill.inp").write_text(text)
-    return tmp_path / "fill.inp"
+    return write_deck(tmp_path, text, name="fill.inp")
 
 
 def test_delayed_fill_matches_the_closed_form(tmp_path):
