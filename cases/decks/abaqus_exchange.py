@@ -80,6 +80,8 @@ def _area_keys(deck, kw, act, cavity_surface):
         return {"area": deck.si(1.0 if eff is None else eff, "area")}
     if surface not in deck.mesh.surfaces:
         raise kw.error(f"SURFACE={surface}: no *SURFACE of that name{deck.suggest(surface, deck.mesh.surfaces)}")
+    if deck.mesh.surfaces[surface].kind == "NODE":
+        return _node_area_keys(deck, kw, surface, eff, deck.blockers(surface, cavity_surface, act) if blockage else ())
     faces = deck.faces(surface, kw, outward=False)
     blockers = deck.blockers(surface, cavity_surface, act) if blockage else ()
     if not blockers:
@@ -92,6 +94,29 @@ def _area_keys(deck, kw, act, cavity_surface):
         keys["effective_area"] = deck.si(eff, "area")
     keys["blocked_by"] = [b for b, _ in blockers]
     keys["contact_tolerance"] = max(tol for _, tol in blockers)
+    if deck.edge_contact:
+        keys["edge_contact"] = True
+    return keys
+
+
+def _node_area_keys(deck, kw, surface, eff, blockers):
+    """A node-based leakage surface: area EFFECTIVE AREA or the sum of its node areas; with blockers a
+    ``leakage_nodes`` CSV (x, y, z, area per node), the blocked fraction being the active nodes' share."""
+    nodes = list({n: (n, w, line) for n, w, line in reversed(deck.mesh.surfaces[surface].nodes)}.values())[::-1]
+    for n, _, line in nodes:
+        if n not in deck.mesh.nodes:
+            raise deck.mesh_error(surface, line, f"{surface}: no node {n}")
+    area = deck.si(eff, "area") if eff is not None else sum(deck.si(w, "area") for _, w, _ in nodes)
+    if not blockers:
+        return {"area": area}
+    name = f"{deck.stem}/{kw.label('NAME').lower()}_leak_nodes.csv"
+    deck.files[name] = "x [m],y [m],z [m],area [m^2]\n" + "".join(
+        ",".join(repr(deck.si(c, "length")) for c in deck.mesh.nodes[n]) + f",{deck.si(w, 'area')!r}\n"
+        for n, w, _ in nodes)
+    keys = {"leakage_nodes": name, "blocked_by": [b for b, _ in blockers],
+            "contact_tolerance": max(tol for _, tol in blockers)}
+    if eff is not None:
+        keys["effective_area"] = area
     return keys
 
 

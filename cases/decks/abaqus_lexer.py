@@ -36,13 +36,13 @@ KEYWORDS = ("HEADING", "PARAMETER", "INCLUDE", "NODE", "ELEMENT", "NSET", "ELSET
             "FLUID INFLATOR ACTIVATION", "AMPLITUDE", "CONTACT PROPERTY ASSIGNMENT", "SURFACE INTERACTION",
             "BLOCKAGE", "SURFACE BEHAVIOR", "CONTACT DAMPING", "FRICTION", "RIGID BODY", "BOUNDARY", "TRANSFORM",
             "STEP", "DYNAMIC", "END STEP", "OUTPUT", "NGEN", "NFILL", "NCOPY", "ELGEN", "FLUID LINK", "STATIC",
-            "FLUID FLUX", "CONTACT", "MATERIAL")
+            "FLUID FLUX", "CONTACT", "CONTACT FORMULATION", "MATERIAL")
 _KEYWORDS = {k.replace(" ", ""): k for k in KEYWORDS}
 #: parameter values of more than one word, matched without blanks
 VALUES = ("FLUID PRESSURE", "TEMPERATURE AND MASS", "TANK TEST", "PRESSURE AND MASS", "DUAL PRESSURE",
           "MASS FRACTION", "MOLAR FRACTION", "FABRIC LEAKAGE", "MASS RATE LEAKAGE", "VOLUME RATE LEAKAGE",
           "MASS FLUX", "VOLUME FLUX", "BULK VISCOSITY", "ENERGY FLUX", "ENERGY RATE LEAKAGE", "SMOOTH STEP",
-          "EQUALLY SPACED", "STEP TIME", "TOTAL TIME")
+          "EQUALLY SPACED", "STEP TIME", "TOTAL TIME", "EDGE TO EDGE")
 _VALUES = {v.replace(" ", ""): v for v in VALUES}
 _SUBST = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
 #: functions a *PARAMETER expression may call (Abaqus evaluates them as Python)

@@ -25,7 +25,8 @@ SURFACE_ELEMENTS = {**{t: (3, 3) for t in ("S3", "S3R", "S3RS", "STRI3", "M3D3",
 
 @dataclass
 class Surface:
-    """An element-based surface (faces: element id and side SPOS / SNEG / None) or a node-based one."""
+    """An element-based surface (faces: element id, side SPOS / SNEG / None, line) or a node-based one (nodes:
+    node id, area, line)."""
 
     name: str
     kind: str  # ELEMENT or NODE
@@ -150,8 +151,13 @@ def _surface(mesh, kw):
     for d in kw.data:
         label = d.fields[0].upper()
         side = d.fields[1].upper() if len(d.fields) > 1 and d.fields[1] else None
-        if kind == "NODE":
-            surf.nodes.extend(mesh.nsets[label] if label in mesh.nsets else [_int(kw, label, d)])
+        if kind == "NODE":  # data: node or node set, the area of each node (default 1.0)
+            try:
+                weight = float(d.fields[1]) if len(d.fields) > 1 and d.fields[1] else 1.0
+            except ValueError:
+                raise kw.error(f"expected the node area, got {d.fields[1]!r}", d.line) from None
+            nodes = mesh.nsets[label] if label in mesh.nsets else [_int(kw, label, d)]
+            surf.nodes.extend((n, weight, d.line) for n in nodes)
             continue
         elems = mesh.elsets[label] if label in mesh.elsets else [_int(kw, label, d)]
         for e in elems:
@@ -173,6 +179,10 @@ def read_mesh(blocks) -> Mesh:
             _set(mesh, kw, kw.name)
         elif kw.name == "SURFACE":
             _surface(mesh, kw)
+        if kw.name in ("NSET", "ELSET", "NODE", "ELEMENT"):  # a set holds each member once, in first-use order
+            for sets in (mesh.nsets, mesh.elsets):
+                for name in [kw.label(p) for p in ("NSET", "ELSET") if kw.label(p) in sets]:
+                    sets[name] = list(dict.fromkeys(sets[name]))
     return mesh
 
 

@@ -15,7 +15,7 @@ from . import abaqus_bodies, abaqus_exchange, abaqus_fluid, abaqus_inflator
 from .abaqus_lexer import read_keywords
 from .abaqus_mesh import face_nodes, read_mesh
 from .abaqus_parts import flatten_parts
-from .deck_io import faces_area, ignored_line
+from .deck_io import deck_error, faces_area, ignored_line
 from .imported import Imported
 from .units import unit_system
 from .write_scene import csv_text, obj_text
@@ -47,7 +47,7 @@ class Deck:
         self.exchange_props, self.exchanges, self.exchange_activation = {}, [], {}
         self.interactions, self.assignments, self.rigid_bodies, self.boundaries, self.bodies = {}, [], [], {}, {}
         self.amplitudes, self.cavity_kws, self.time_end, self.output_interval, self.title = {}, [], None, None, ""
-        self.step_kw, self.transforms = None, []
+        self.step_kw, self.transforms, self.edge_contact = None, [], False
         self.mesh = None
 
     suggest = staticmethod(suggest)
@@ -101,6 +101,9 @@ class Deck:
         xyz = {n: tuple(self.si(c, "length") for c in self.mesh.nodes[n]) for f in faces for n in f}
         self.files[name] = obj_text(faces, xyz, f"{stem}: from {self.path.name}")
         return name
+
+    def mesh_error(self, surface, line, message):
+        return deck_error(self.mesh.surfaces[surface].file, line, "SURFACE", message)
 
     def faces(self, surface, kw, outward):
         return face_nodes(self.mesh, self.mesh.surfaces[surface], outward=outward, file=kw.file, line=kw.line)
@@ -187,6 +190,10 @@ def _read(deck, blocks):
             deck.ignore(kw, "damping acts on a dynamic body's contact force; deck bodies move as prescribed")
         elif kw.name == "FRICTION":
             deck.ignore(kw)
+        elif kw.name == "CONTACT FORMULATION":
+            deck.edge_contact |= "EDGE" in (kw.label("TYPE") or "")
+            if "EDGE" not in (kw.label("TYPE") or ""):
+                deck.ignore(kw)
         elif kw.name == "TRANSFORM":
             deck.transforms.append(kw)
             deck.ignore(kw, "local directions of nodal boundary conditions (refused on a moving rigid body)")

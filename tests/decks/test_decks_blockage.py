@@ -50,3 +50,24 @@ def test_vent_area_is_the_unblocked_fraction_of_the_effective_area(run):
         checked.add(round(area[k] / A_EFF * 12))  # 12ths: N_c/N_e steps of the four elements
     assert len(checked) >= 4  # open, partly blocked (several fractions), closed
     assert area[0] == A_EFF and area[-1] == 0.0
+
+
+def test_node_based_vent_loses_the_share_of_its_active_nodes(tmp_path):
+    """*SURFACE, TYPE=NODE as the leakage surface: area = A_eff·(1 − active nodes / all), the nodes counted by the
+    analytic distance to the plate rectangle (Abaqus: node-based surface, blocked fraction of the nodes)."""
+    deck = (HERE / "decks" / "vented_box_blockage.inp").read_text().replace(
+        "*SURFACE, NAME=VENT_SURF\n VENT_ELS, SPOS",
+        "*NSET, NSET=VENT_NODES, ELSET=VENT_ELS\n*SURFACE, NAME=VENT_SURF, TYPE=NODE\n VENT_NODES")
+    (tmp_path / "vented_box_mesh.inp").write_text((HERE / "decks" / "vented_box_mesh.inp").read_text())
+    (tmp_path / "nodes.inp").write_text(deck)
+    scene, imported = deck_scene(tmp_path / "nodes.inp", tmp_path / "out" / "s.toml")
+    assert imported.data["exchange"][0]["leakage_nodes"] == "nodes/vent_leak_nodes.csv"
+    r = run_scene(scene)
+    t, area = r.column("time"), r.column("vent.area")
+    grid = [(0.05 * i, 0.05 * j) for i in (1, 2, 3) for j in (1, 2, 3)]
+    for k in range(0, len(t), 4):
+        x0, x1 = -0.15 + SPEED * t[k], -0.03 + SPEED * t[k]
+        active = sum(np.hypot(np.hypot(max(x0 - x, 0, x - x1), max(0.04 - y, 0, y - 0.16)), H) <= C0
+                     for x, y in grid)
+        assert abs(area[k] - A_EFF * (1 - active / 9)) <= 1e-15 * A_EFF, t[k]
+    assert area[0] == A_EFF and area[-1] == 0.0
