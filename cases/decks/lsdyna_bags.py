@@ -87,11 +87,11 @@ def _inflator(deck, kw, name, g):
     entry = {"name": "inflator", "type": "mass_temperature",
              "mass_flow": deck.table_file(f"{name}_mass_flow", t, m, "time [s],mass flow [kg/s]"),
              "gas": {f"{name}_gas": 1.0}}  # the bag's gas (the scene's default inflator gas is N2)
-    if g["t"]:
-        entry["temperature"] = float(g["t"])
-    elif g["lct"]:
+    if g["lct"]:  # the optional curve of the gas temperature takes precedence over the constant T
         tt, tv = deck.curve(kw, g["lct"], "LCT", "time", "dimensionless")
         entry["temperature"] = deck.table_file(f"{name}_temperature", tt, tv, "time [s],temperature [K]")
+    elif g["t"]:
+        entry["temperature"] = float(g["t"])
     else:
         raise kw.error("the inflator gas needs a temperature T or a curve LCT")
     return [entry]
