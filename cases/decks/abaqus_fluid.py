@@ -11,11 +11,9 @@ p + p_A = ρ R (θ − θ_Z), Analysis User's Guide "Fluid cavity definition"); 
 """
 from __future__ import annotations
 
-import math
+from .conversions import R_U, hydraulic_density
 
-R_U = 8.314462618  # J/(mol K), ventsim's universal gas constant (cavity.species)
-
-__all__ = ["read_behaviors", "read_initial", "cavity_entry", "inflator_entries", "species_entries", "R_U"]
+__all__ = ["read_behaviors", "read_initial", "cavity_entry", "species_entries", "floats", "ref_node", "R_U"]
 
 
 def floats(kw, d, n_min=1, what="value"):
@@ -162,7 +160,7 @@ def cavity_entry(deck, kw, volume_entry):
         if not (K > 0 and b["density"] > 0):
             raise b["kw"].error(f"{next(iter(gas)).upper()}: the density and the bulk modulus must be > 0")
         try:
-            rho = b["density"] * math.exp(dp / K) if dp else b["density"]  # ρ = ρ_R·exp((p − p_R)/K)
+            rho = hydraulic_density(b["density"], gauge, b.get("p_ref", 0.0), K)
         except OverflowError:
             raise kw.error(f"the initial pressure is {dp / K:.3g} bulk moduli above the reference: the density "
                            "overflows") from None

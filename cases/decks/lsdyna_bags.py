@@ -5,7 +5,7 @@ AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, *AIRBAG_INTERACTION, *MAT_FABRIC (FLC, FAC, E
 """
 from __future__ import annotations
 
-from .abaqus_fluid import R_U
+from .conversions import constant_cp_species
 from .deck_io import faces_area
 from .lsdyna_cards import W10, fields, refuse
 from .lsdyna_hybrid import hybrid_gas
@@ -128,11 +128,11 @@ def _constant_gas(deck, kw, cards, name):
     r = deck.si(g["cp"] or 0.0, "specific_heat") - deck.si(g["cv"] or 0.0, "specific_heat")
     if not r > 0:
         raise kw.error(f"CP - CV = {r!r}: expected CP > CV > 0 (J/(kg K))", cards[1][1])
-    M = R_U / r
+    M, cp_molar = constant_cp_species(deck.si(g["cp"], "specific_heat"), deck.si(g["cv"], "specific_heat"))
     pe, ro = deck.si(g["pe"] or 0.0, "pressure"), deck.si(g["ro"] or 0.0, "density")
     if not (pe > 0 and (ro > 0 or g["iabt"])):
         raise kw.error("PE and RO (ambient pressure and density) must be > 0")
-    species = {"name": f"{name}_gas", "molar_mass": M, "cp": [deck.si(g["cp"], "specific_heat") * M]}
+    species = {"name": f"{name}_gas", "molar_mass": M, "cp": [cp_molar]}
     state = {"pressure": pe, "temperature": float(g["iabt"]) if g["iabt"] else pe / (ro * r),
              "gas": {species["name"]: 1.0}}
     inflators = _inflator(deck, kw, name, g)

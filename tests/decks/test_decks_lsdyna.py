@@ -6,7 +6,7 @@ import pytest
 import numpy as np
 
 from cases.decks import deck_scene, import_deck
-from cases.decks.abaqus_fluid import R_U
+from cases.decks.conversions import R_U
 from cases.runner import run_scene
 from cases.errors import SceneError
 from cases.library import HERE
