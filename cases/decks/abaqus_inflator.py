@@ -82,7 +82,7 @@ def _start(deck, act):
     name = act.label("INFLATION TIME AMPLITUDE")
     if name is None:
         return 0.0
-    t, f = deck.amplitude(name, act)
+    t, f = deck.amplitude(name, act, smooth_step=True)  # a symmetric smooth step integrates like the ramp
     zeros = [i for i, v in enumerate(f) if v == 0.0]
     ones = [i for i, v in enumerate(f) if v == 1.0]
     a = zeros[-1] if zeros else None

@@ -42,7 +42,7 @@ _KEYWORDS = {k.replace(" ", ""): k for k in KEYWORDS}
 VALUES = ("FLUID PRESSURE", "TEMPERATURE AND MASS", "TANK TEST", "PRESSURE AND MASS", "DUAL PRESSURE",
           "MASS FRACTION", "MOLAR FRACTION", "FABRIC LEAKAGE", "MASS RATE LEAKAGE", "VOLUME RATE LEAKAGE",
           "MASS FLUX", "VOLUME FLUX", "BULK VISCOSITY", "ENERGY FLUX", "ENERGY RATE LEAKAGE", "SMOOTH STEP",
-          "EQUALLY SPACED", "STEP TIME", "TOTAL TIME", "EDGE TO EDGE")
+          "EQUALLY SPACED", "STEP TIME", "TOTAL TIME", "EDGE TO EDGE", "FIXED INTERVAL")
 _VALUES = {v.replace(" ", ""): v for v in VALUES}
 _SUBST = re.compile(r"<\s*([A-Za-z_][A-Za-z0-9_]*)\s*>")
 #: functions a *PARAMETER expression may call (Abaqus evaluates them as Python)

@@ -80,10 +80,14 @@ class Deck:
         r_si = self.si(self.gas_constant, "molar_heat")
         return 1.0 if r_si == abaqus_fluid.R_U else abaqus_fluid.R_U / r_si
 
-    def amplitude(self, name, kw):
+    def amplitude(self, name, kw, smooth_step=False):
+        """(times, values) of amplitude ``name``; a SMOOTH STEP only where ``smooth_step`` (its integral)."""
         if name not in self.amplitudes:
             raise kw.error(f"AMPLITUDE={name}: no *AMPLITUDE of that name{suggest(name, self.amplitudes)}")
         akw, t, a = self.amplitudes[name]
+        if not smooth_step and akw.label("DEFINITION") == "SMOOTH STEP":
+            raise kw.error(f"AMPLITUDE={name} is a SMOOTH STEP: ventsim's tables are piecewise linear (here only an "
+                           "INFLATION TIME AMPLITUDE may be a smooth step)")
         return t, a
 
     def step_end(self, kw):
@@ -140,6 +144,26 @@ def _step(deck, kw):
     return True
 
 
+def _amplitude(kw):
+    """(keyword, times, values) of an *AMPLITUDE: TABULAR pairs (any number per line), EQUALLY SPACED values
+    (FIXED INTERVAL=, BEGIN=), or SMOOTH STEP pairs (kept for the inflation-time delay only)."""
+    definition = kw.label("DEFINITION") or "TABULAR"
+    if definition not in ("TABULAR", "EQUALLY SPACED", "SMOOTH STEP"):
+        raise kw.error(f"DEFINITION={definition}: ventsim reads TABULAR, EQUALLY SPACED and SMOOTH STEP amplitudes")
+    values = [v for d in kw.data for v, f in zip(abaqus_fluid.floats(kw, d, 1, "amplitude data"), d.fields) if f]
+    if definition == "EQUALLY SPACED":
+        dt, begin = kw.number("FIXED INTERVAL"), kw.number("BEGIN", 0.0)
+        if not dt or dt <= 0:
+            raise kw.error("EQUALLY SPACED needs FIXED INTERVAL= > 0")
+        return kw, [begin + i * dt for i in range(len(values))], values
+    if len(values) % 2 or not values:
+        raise kw.error("expected time, amplitude pairs", kw.data[-1].line if kw.data else None)
+    times = values[0::2]
+    if any(b < a for a, b in zip(times, times[1:])):
+        raise kw.error("the times must not decrease")
+    return kw, times, values[1::2]
+
+
 def _general(deck, kw):
     """*HEADING, *PHYSICAL CONSTANTS, *AMPLITUDE, *INITIAL CONDITIONS, steps: True when handled."""
     if kw.name == "HEADING":
@@ -148,13 +172,7 @@ def _general(deck, kw):
         deck.abs_zero = kw.number("ABSOLUTE ZERO", 0.0)
         deck.gas_constant = kw.number("UNIVERSAL GAS CONSTANT")
     elif kw.name == "AMPLITUDE":
-        definition = kw.label("DEFINITION") or "TABULAR"
-        if definition != "TABULAR":
-            raise kw.error(f"DEFINITION={definition}: ventsim reads TABULAR (piecewise-linear) amplitudes")
-        values = [v for d in kw.data for v in abaqus_fluid.floats(kw, d, 2, "time, amplitude pairs")]
-        if len(values) % 2:
-            raise kw.error("an odd number of values: expected time, amplitude pairs", kw.data[-1].line)
-        deck.amplitudes[kw.label("NAME", required=True)] = (kw, values[0::2], values[1::2])
+        deck.amplitudes[kw.label("NAME", required=True)] = _amplitude(kw)
     elif kw.name == "INITIAL CONDITIONS":
         return abaqus_fluid.read_initial(deck, kw)
     elif kw.name in ("STEP", "DYNAMIC", "OUTPUT"):

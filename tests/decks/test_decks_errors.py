@@ -174,3 +174,13 @@ def test_blanks_case_and_abbreviations_on_keyword_lines(tmp_path):
     (tmp_path / "a").mkdir()
     (tmp_path / "b").mkdir()
     assert import_deck(write(tmp_path / "a", text)).data == import_deck(write(tmp_path / "b", STEM)).data
+
+
+def test_cli_import_with_units(tmp_path):
+    deck = write(tmp_path, _mm_t_s(STEM), name="mm.inp")
+    assert main(["import", str(deck), "--out", str(tmp_path / "mm.toml"), "--units", "mm-t-s", "--quiet"]) == 0
+    import tomllib
+
+    data = tomllib.loads((tmp_path / "mm.toml").read_text())
+    assert data["cavity"][0]["pressure"] == pytest.approx(5e5, rel=1e-15)
+    assert data["exchange"][0]["area"] == pytest.approx(1e-4, rel=1e-15)

@@ -68,3 +68,26 @@ def test_an_inflator_never_activated_is_a_note(tmp_path):
                                                         "DEPLOY, MASS FLOW AMPLITUDE=HALF\n INF\n", "")))
     assert "inflator" not in imported.data["cavity"][0]
     assert imported.notes == ["inflator INF is never activated (*FLUID INFLATOR ACTIVATION): no inflow, as in Abaqus"]
+
+
+def test_smooth_step_deployment_and_equally_spaced_flow_amplitude(tmp_path):
+    """A SMOOTH STEP from 0 at 0.01 to 1 at 0.01 (no ramp) is the same delay; an EQUALLY SPACED constant 0.5 the
+    same multiplier: the history is the tabular deck's."""
+    text = DECK.replace("*AMPLITUDE, NAME=DEPLOY\n 0.0, 0.0, 0.01, 0.0, 0.01, 1.0, 1.0, 1.0",
+                        "*AMPLITUDE, NAME=DEPLOY, DEFINITION=SMOOTH STEP\n 0.01, 0.0, 0.01, 1.0")
+    text = text.replace("*AMPLITUDE, NAME=HALF\n 0.0, 0.5, 1.0, 0.5",
+                        "*AMPLITUDE, NAME=HALF, DEFINITION=EQUALLY SPACED, FIXED INTERVAL=0.5\n 0.5, 0.5, 0.5")
+    assert text != DECK
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    a = import_deck(write(tmp_path / "a", text)).data["cavity"][0]["inflator"][0]
+    b = import_deck(write(tmp_path / "b", DECK)).data["cavity"][0]["inflator"][0]
+    assert a == b and a["start"] == 0.01 and a["scale"] == 0.5
+
+
+def test_smooth_step_is_refused_as_a_table(tmp_path):
+    text = DECK.replace("*AMPLITUDE, NAME=HALF\n 0.0, 0.5, 1.0, 0.5",
+                        "*AMPLITUDE, NAME=HALF, DEFINITION=SMOOTH STEP\n 0.0, 0.5, 1.0, 0.5")
+    with pytest.raises(SceneError) as info:
+        import_deck(write(tmp_path, text))
+    assert "AMPLITUDE=HALF is a SMOOTH STEP" in str(info.value) and "line 36" in str(info.value)
