@@ -110,3 +110,20 @@ def test_empty_part_set(tmp_path):
     deck = write(tmp_path, text)
     assert error_of(deck) == (f"{deck}: line {line_of(text, '*AIRBAG_WANG_NEFSKE_ID')}: *AIRBAG_WANG_NEFSKE_ID: "
                               "SID 1 (SIDTYP 1): the set has no shell elements or segments")
+
+
+def test_parameters_replace_ampersand_fields(tmp_path):
+    text = BAG.replace("*CONTROL_TERMINATION", "*PARAMETER\nR endt          0.06I lcmass          10\n"
+                                                "*CONTROL_TERMINATION")
+    text = text.replace("$#  endtim\n      0.06", "$#  endtim\n     &endt").replace(
+        "718.0, 1005.0, 600.0, 0, 10,", "718.0, 1005.0, 600.0, 0, &lcmass,")
+    assert "&endt" in text and "&lcmass" in text
+    assert import_deck(write(tmp_path, text)).data == import_deck(HERE / "decks" / "wang_nefske_bag.k").data
+
+
+def test_unknown_parameter_and_text_after_end(tmp_path):
+    text = BAG.replace("$#  endtim\n      0.06", "$#  endtim\n     &endt")
+    deck = write(tmp_path, text)
+    assert error_of(deck).endswith("*CONTROL_TERMINATION: field 1: '&endt' names no *PARAMETER defined before")
+    assert import_deck(write(tmp_path, BAG + "this is not a card\n")).data == \
+        import_deck(HERE / "decks" / "wang_nefske_bag.k").data
