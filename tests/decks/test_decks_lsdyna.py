@@ -127,3 +127,50 @@ def test_unknown_parameter_and_text_after_end(tmp_path):
     assert error_of(deck).endswith("*CONTROL_TERMINATION: field 1: '&endt' names no *PARAMETER defined before")
     assert import_deck(write(tmp_path, BAG + "this is not a card\n")).data == \
         import_deck(HERE / "decks" / "wang_nefske_bag.k").data
+
+
+def _wang_nefske_card4(ppop):
+    return "".join(f"{v:>10}" for v in ("101325.0", "1.204", "1.0", 0, "0.0", ppop, 0, 0))
+
+
+def test_simple_airbag_model_is_the_wang_nefske_bag_without_pop(tmp_path):
+    """*AIRBAG_SIMPLE_AIRBAG_MODEL (CV CP T LCID MU A PE RO) with the Wang–Nefske bag's data gives its history
+    when the Wang–Nefske vent has no pop pressure (both vents are the isentropic orifice)."""
+    no_pop = BAG.replace(_wang_nefske_card4("1.0e4"), _wang_nefske_card4("0.0"))
+    start = BAG.index("*AIRBAG_WANG_NEFSKE_ID")
+    simple = BAG[:start] + "\n".join([
+        "*AIRBAG_SIMPLE_AIRBAG_MODEL_ID", f"{1:>10}driver bag",
+        "".join(f"{v:>10}" for v in (1, 1, 0, "1.0", "1.0", "0.0", "0.0", "0.0")),
+        "".join(f"{v:>10}" for v in ("718.0", "1005.0", "600.0", 10, "0.7", "5.0e-4", "101325.0", "1.204")),
+        "*END"]) + "\n"
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    a = run_scene(deck_scene(write(tmp_path / "a", simple), tmp_path / "a" / "s.toml")[0])
+    b = run_scene(deck_scene(write(tmp_path / "b", no_pop), tmp_path / "b" / "s.toml")[0])
+    assert a.columns == b.columns
+    assert np.max(np.abs(a.history - b.history) / np.max(np.abs(b.history), axis=0)) <= 1e-12
+
+
+def test_airbag_interaction_joins_two_bags(tmp_path):
+    """A second bag (the same box shifted 1 m, no inflator, no vent) fed through *AIRBAG_INTERACTION: an orifice
+    of AREA and Cd = SF between them; the second bag's pressure rises and mass is conserved."""
+    nodes = BAG[BAG.index("*NODE\n"):BAG.index("*ELEMENT_SHELL")].splitlines()[2:]
+    shells = BAG[BAG.index("*ELEMENT_SHELL"):BAG.index("*PART")].splitlines()[2:]
+    moved = [f"{int(n[:8]) + 1000:>8}{float(n[8:24]) + 1.0!r:>16}{n[24:]}" for n in nodes]
+    second = [f"{int(e[:8]) + 1000:>8}{3:>8}" + "".join(f"{int(e[k:k + 8]) + 1000:>8}" for k in range(16, 48, 8))
+              for e in shells]
+    text = BAG.replace("*ELEMENT_SHELL", "*NODE\n" + "\n".join(moved) + "\n*ELEMENT_SHELL\n" + "\n".join(second) +
+                       "\n*ELEMENT_SHELL").replace("*END\n", "\n".join([
+        "*SET_PART_LIST", f"{2:>10}", f"{3:>10}", "*AIRBAG_WANG_NEFSKE_ID", f"{2:>10}passenger side",
+        "".join(f"{v:>10}" for v in (2, 1, 0, "1.0", "1.0", "0.0", "0.0", "0.0")),
+        "718.0, 1005.0, 600.0, 0, 0, 0.0, 0, 0.0", "0.0, 0, 0.0, 0, 0.0, 0, 0.0, 0",
+        "101325.0, 1.204, 1.0, 0, 0.0, 0.0, 0, 0", "*AIRBAG_INTERACTION", "1, 2, 1.0e-3, 0.8", "*END"]) + "\n")
+    scene, imported = deck_scene(write(tmp_path, text), tmp_path / "o" / "s.toml")
+    link = next(e for e in imported.data["exchange"] if e["name"] == "bag1_to_bag2")
+    assert link == {"name": "bag1_to_bag2", "from": "bag1", "to": "bag2", "law": "orifice", "area": 1e-3,
+                    "discharge_coefficient": 0.8}
+    assert "bag2: no mass flow curve (LCMT/LCID = 0): no inflator" in imported.notes
+    r = run_scene(scene)
+    assert r.column("bag2.pressure")[-1] > 1.5e5 and r.column("bag2.mass")[-1] > r.column("bag2.mass")[0]
+    for name, bal in r.summary["mass balance"].items():
+        assert bal["relative imbalance [-]"] <= 1e-12, name
