@@ -41,7 +41,8 @@ CASES = {
     "deck_wang_nefske_bag": "decks/wang_nefske_bag.toml",
 }
 #: cases whose scene is the TOML twin of a deck: the deck is run too and must give the twin's history to TWIN_RTOL
-DECK_TWINS = {"deck_box_blowdown": "decks/box_blowdown.inp", "deck_vented_box_blockage": "decks/vented_box_blockage.inp",
+DECK_TWINS = {"deck_box_blowdown": "decks/box_blowdown.inp",
+              "deck_vented_box_blockage": "decks/vented_box_blockage.inp",
               "deck_hydraulic_two_cavity": "decks/hydraulic_two_cavity.inp",
               "deck_wang_nefske_bag": "decks/wang_nefske_bag.k"}
 TWIN_RTOL = 1e-12

@@ -195,12 +195,12 @@ def face_nodes(mesh: Mesh, surface: Surface, *, outward: bool, file="", line=0) 
     faces = []
     for e, side, dline in surface.faces:
         if side not in (None, "SPOS", "SNEG"):
-            raise deck_error(surface.file, dline, "SURFACE", f"{surface.name}: face {side} of element {e}: ventsim "
-                                                             "reads shell, membrane and surface-element faces (SPOS, SNEG) only")
+            raise deck_error(surface.file, dline, "SURFACE", f"{surface.name}: face {side} of element {e}: "
+                             "ventsim reads shell, membrane and surface-element faces (SPOS, SNEG) only")
         if e in mesh.other:
             etype, efile, eline = mesh.other[e]
-            raise deck_error(surface.file, dline, "SURFACE", f"{surface.name}: element {e} ({etype}, {efile} line "
-                                                             f"{eline}) is not a shell, membrane, surface or rigid element")
+            raise deck_error(surface.file, dline, "SURFACE", f"{surface.name}: element {e} ({etype}, {efile} "
+                             f"line {eline}) is not a shell, membrane, surface or rigid element")
         nodes = mesh.elements[e]
         missing = [n for n in nodes if n not in mesh.nodes]
         if missing:

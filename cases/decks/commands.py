@@ -48,4 +48,5 @@ def add_import_parser(sub) -> None:
 
 def add_units_argument(p) -> None:
     p.add_argument("--units", default="SI", choices=list(SYSTEMS),
-                   help="unit system of a deck's numbers (default SI; mm-t-s: mm, t, s, MPa; mm-kg-ms: mm, kg, ms, GPa)")
+                   help="unit system of a deck's numbers (default SI; mm-t-s: mm, t, s, MPa; mm-kg-ms: mm, kg, "
+                        "ms, GPa)")

@@ -75,7 +75,8 @@ def test_node_based_vent_loses_the_share_of_its_active_nodes(tmp_path):
 
 def test_edge_to_edge_contact_formulation_sets_edge_contact(tmp_path):
     deck = (HERE / "decks" / "vented_box_blockage.inp").read_text().replace(
-        "*CONTACT INCLUSIONS, ALL EXTERIOR", "*CONTACT INCLUSIONS, ALL EXTERIOR\n*CONTACT FORMULATION, TYPE=EDGE TO EDGE")
+        "*CONTACT INCLUSIONS, ALL EXTERIOR",
+        "*CONTACT INCLUSIONS, ALL EXTERIOR\n*CONTACT FORMULATION, TYPE=EDGE TO EDGE")
     (tmp_path / "vented_box_mesh.inp").write_text((HERE / "decks" / "vented_box_mesh.inp").read_text())
     (tmp_path / "edges.inp").write_text(deck)
     scene, imported = deck_scene(tmp_path / "edges.inp", tmp_path / "out" / "s.toml")

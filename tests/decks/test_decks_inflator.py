@@ -59,8 +59,8 @@ def test_a_ramp_that_is_not_a_step_is_refused(tmp_path):
     with pytest.raises(SceneError) as info:
         import_deck(deck)
     assert str(info.value) == (f"{deck}: line 36: *FLUID INFLATOR ACTIVATION: INFLATION TIME AMPLITUDE=DEPLOY: "
-                               "ventsim reads a step from 0 to 1 (0 up to t_a, 1 from t_b = the next point on, t_b - t_a "
-                               "<= 0.001 x the step time)")
+                               "ventsim reads a step from 0 to 1 (0 up to t_a, 1 from t_b = the next point on, "
+                               "t_b - t_a <= 0.001 x the step time)")
 
 
 def test_an_inflator_never_activated_is_a_note(tmp_path):
