@@ -30,7 +30,6 @@ LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fil
              "airbag_vented", "airbag_impactor", "airbag_impactor_dynamic", "seal_vent", "seal_vent_nodes",
              "vent_bar_edge",  # bodies: area steps and volume splines, the dynamic body's areas and switches
              "deck_box_blowdown", "deck_vented_box_blockage", "deck_wang_nefske_bag"]
-             "deck_box_blowdown", "deck_vented_box_blockage", "deck_wang_nefske_bag"]
 
 
 def model_of(name):
