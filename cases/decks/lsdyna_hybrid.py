@@ -4,7 +4,8 @@ Cards after card 1: ATMOST ATMOSP ATMOSD GC CC HCONV (ambient temperature, press
 C23 LCC23 A23 LCA23 CP23 LCP23 AP23 LCAP23 (vent and porosity orifices); OPT PVENT NGAS LCEFR LCIDM0 VNTOPT; then
 per gas a card LCIDM LCIDT (unused) MW INITM A B C and a card FMASS. Gas i: molar mass MW, molar heat capacity
 cp = A + B·T + C·T² (so cp per mass is (A + BT + CT²)/MW), initial mass fraction INITM in the bag. The inflow is
-LCIDM0 split by the mass fractions FMASS (one inflator), or each gas's own LCIDM and LCIDT (one inflator each).
+LCIDM0 split by the mass fractions FMASS (one inflator), or each gas's own LCIDM and LCIDT (one inflator each,
+``inflator<i>`` when several gases are injected).
 PVENT (gauge pressure at which venting starts) is the vent's pop pressure.
 """
 from __future__ import annotations
@@ -49,10 +50,11 @@ def _inflators(deck, kw, name, gases, names, lcidm0):
         return [{"name": "inflator", "type": "mass_temperature", "mass_flow": mass_flow(lcidm0, f"{name}_mass_flow"),
                  "temperature": temperature(injected[0]["lcidt"], f"{name}_temperature"),
                  "gas": {n: g["fmass"] for n, g in zip(names, gases) if g["fmass"] > 0}}]
-    return [{"name": f"inflator{i + 1}", "type": "mass_temperature",
+    injected = [(i, n, g) for i, (n, g) in enumerate(zip(names, gases)) if g["lcidm"]]
+    return [{"name": f"inflator{i + 1}" if len(injected) > 1 else "inflator", "type": "mass_temperature",
              "mass_flow": mass_flow(g["lcidm"], f"{name}_gas{i + 1}_mass_flow"),
              "temperature": temperature(g["lcidt"], f"{name}_gas{i + 1}_temperature"), "gas": {n: 1.0}}
-            for i, (n, g) in enumerate(zip(names, gases)) if g["lcidm"]]
+            for i, n, g in injected]
 
 
 def hybrid_gas(deck, kw, cards, name):
