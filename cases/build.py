@@ -2,11 +2,13 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from cavity.cavity import Cavity
+from cavity.caution import VentsimWarning
 from cavity.gas import GasModel
 from cavity.hydraulic import HydraulicCavity
 from cavity.tables import Table
@@ -28,9 +30,10 @@ from .build_geometry import (Driver, build_bodies, build_contact, build_leak_are
 from .errors import SceneError
 from .scene_network import BodyForces, SceneNetwork
 from .scene import Scene
+from .scene_validate import ensure_valid
 from .tables_io import read_table
 
-__all__ = ["Model", "build_model"]
+__all__ = ["Model", "build_model", "unique_messages"]
 
 
 @dataclass
@@ -43,9 +46,26 @@ class Model:
     output_times: np.ndarray
     modelled: dict
     geometry: dict | None = None
+    warnings: list = field(default_factory=list)  # messages of the VentsimWarnings raised validating and building
 
 
 def build_model(scene: Scene) -> Model:
+    """Validate ``scene`` (:func:`cases.scene_validate.ensure_valid`, also for a scene built in Python) and build
+    its model; the warnings given meanwhile are kept in ``Model.warnings``."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", VentsimWarning)
+        early = ensure_valid(scene)
+        model = _build(scene)
+    model.warnings = unique_messages(early + [w for w in caught if issubclass(w.category, VentsimWarning)])
+    return model
+
+
+def unique_messages(caught) -> list:
+    """The distinct messages of warnings (or strings), in order."""
+    return list(dict.fromkeys(str(getattr(w, "message", w)) for w in caught))
+
+
+def _build(scene: Scene) -> Model:
     gas = GasModel(_species(scene))
     amb = scene.ambient
     y_amb = gas.mass_fractions(amb.gas, molar=amb.gas_by_mole)
@@ -71,7 +91,8 @@ def build_model(scene: Scene) -> Model:
     times = np.append(grid[grid < t_end - 1e-9 * dt], t_end)  # no second row a rounding error before/after t_end
     s = scene.solver
     options = SolverOptions(method=s.method, rtol=s.rtol, atol=(s.atol or s.rtol / 100) * _scales(network, t_end),
-                            max_step=s.max_step or math.inf)
+                            max_step=s.max_step or math.inf, max_steps=scene.limits.steps,
+                            max_wall=scene.limits.wall or math.inf)
     return Model(scene, network, options, times, _modelled(scene, cavities), geo)
 
 

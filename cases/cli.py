@@ -33,38 +33,64 @@ def _configure_logging(args) -> None:
 
 def _run(args) -> int:
     from .decks.commands import scene_for_run
-    from .output import write_results
-    from .runner import run_scene
+    from .output import check_out, output_set, write_results
+    from .runner import RunError, run_scene
 
+    check_out(args.out)  # before the run, not after it
     start = time.process_time()
     scene, deck = scene_for_run(args.scene, args.out, args.units, args.quiet)
-    results = run_scene(scene, progress=not args.quiet)
+    try:
+        results = run_scene(scene, progress=not args.quiet, max_wall=args.max_wall)
+    except RunError as exc:
+        if exc.partial is not None:
+            with output_set(args.out) as stage:
+                _keep_imported(args.out, stage)
+                write_results(exc.partial, stage)
+            raise RunError(exc.file, f"{str(exc).split(': ', 1)[1]} (wrote what it had into {args.out})") from None
+        raise
     if deck is not None:
         results.summary.setdefault("modelled", {})["deck"] = deck.modelled()
     log.debug("built and solved in %.2f s CPU", time.process_time() - start)
     start = time.process_time()
-    paths = write_results(results, args.out)
-    log.debug("wrote history, summary and plot in %.2f s CPU", time.process_time() - start)
-    if getattr(args, "render", False):
-        from .pictures import write_pictures
+    with output_set(args.out) as stage:
+        _keep_imported(args.out, stage)
+        paths = write_results(results, stage)
+        log.debug("wrote history, summary and plot in %.2f s CPU", time.process_time() - start)
+        if getattr(args, "render", False):
+            from .pictures import write_pictures
 
-        start = time.process_time()
-        pics = write_pictures(results, args.out, times=args.times)
-        paths.update({f"{k} {i}": p for k, v in pics.items() for i, p in enumerate(v)})
-        log.debug("rendered in %.2f s CPU", time.process_time() - start)
+            start = time.process_time()
+            pics = write_pictures(results, stage, times=args.times)
+            paths.update({f"{k} {i}": p for k, v in pics.items() for i, p in enumerate(v)})
+            log.debug("rendered in %.2f s CPU", time.process_time() - start)
+    paths = {k: Path(args.out) / Path(p).relative_to(stage) for k, p in paths.items()}
+    for message in results.summary.get("warnings", []):
+        print(f"ventsim: warning: {message}", file=sys.stderr)
     if not args.quiet:
-        for name, cav in results.summary["cavities"].items():
-            print(f"{name}: peak pressure {cav['peak pressure [Pa]']:.6g} Pa at {cav['peak pressure time [s]']:.6g} s")
-        for name, c in results.summary.get("contact", {}).items():
-            opened = (f", opens at {c['opening pressures [Pa]'][0]:.9g} Pa (preload predicts "
-                      f"{c['opening pressure predicted [Pa]']:.9g} Pa)" if "opening pressures [Pa]" in c else "")
-            print(f"{name}: {c['lift-offs']} lift-offs, {c['reseats']} reseats, peak CPRESS "
-                  f"{c['peak CPRESS [Pa]']:.6g} Pa{opened}")
-        st = results.summary["solver"]
-        print(f"solver {st['method']}: {st['steps']} steps, {st['rhs_calls']} RHS calls, {st['events']} events, "
-              f"{st['wall time [s]']:.3f} s")
-        print("wrote " + ", ".join(str(p) for p in paths.values()))
+        _report(results, paths)
     return EXIT_OK
+
+
+def _keep_imported(out, stage) -> None:
+    """A deck run imported its scene into ``out/scene``: it belongs to the new output set too."""
+    import shutil
+
+    if (Path(out) / "scene").is_dir():
+        shutil.copytree(Path(out) / "scene", Path(stage) / "scene")
+
+
+def _report(results, paths) -> None:
+    for name, cav in results.summary["cavities"].items():
+        print(f"{name}: peak pressure {cav['peak pressure [Pa]']:.6g} Pa at {cav['peak pressure time [s]']:.6g} s")
+    for name, c in results.summary.get("contact", {}).items():
+        opened = (f", opens at {c['opening pressures [Pa]'][0]:.9g} Pa (preload predicts "
+                  f"{c['opening pressure predicted [Pa]']:.9g} Pa)" if "opening pressures [Pa]" in c else "")
+        print(f"{name}: {c['lift-offs']} lift-offs, {c['reseats']} reseats, peak CPRESS "
+              f"{c['peak CPRESS [Pa]']:.6g} Pa{opened}")
+    st = results.summary["solver"]
+    print(f"solver {st['method']}: {st['steps']} steps, {st['rhs_calls']} RHS calls, {st['events']} events, "
+          f"{st['wall time [s]']:.3f} s")
+    print("wrote " + ", ".join(str(p) for p in paths.values()))
 
 
 def _check(args) -> int:
@@ -81,6 +107,16 @@ def _check(args) -> int:
     return EXIT_OK if all(c.passed for c in checks) else EXIT_CHECK_FAILED
 
 
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not (value > 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text!r}")
+    return value
+
+
 def parser() -> argparse.ArgumentParser:
     from .provenance import version
 
@@ -92,8 +128,10 @@ def parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="run a scene file and write history.csv, summary.json, history.png")
     r.add_argument("scene", type=Path, help="scene TOML file, or an Abaqus .inp / LS-DYNA .k deck")
     r.add_argument("--out", type=Path, default=Path("out"), help="output folder (default: out)")
-    r.add_argument("--quiet", action="store_true", help="print nothing but errors (no progress bar)")
+    r.add_argument("--quiet", action="store_true", help="print nothing but errors and warnings (no progress bar)")
     r.add_argument("--verbose", action="store_true", help="also print the CPU time of each phase")
+    r.add_argument("--max-wall", type=_seconds, default=None, metavar="SECONDS",
+                   help="stop the integration after this wall time (overrides [limits] wall)")
     r.add_argument("--render", action="store_true",
                    help="also draw each blocked leakage surface off screen: PNGs, a GIF and a VTK series (.pvd)")
     r.add_argument("--times", type=float, nargs="+", default=None,

@@ -14,7 +14,7 @@ SECTIONS = [("Top level", s.Scene, ""), ("[time]", s.TimeSpec, "time."), ("[solv
             ("[ambient]", s.AmbientSpec, "ambient."), ("[[species]]", s.SpeciesSpec, "species."),
             ("[[cavity]]", s.CavitySpec, "cavity."), ("[[cavity.inflator]]", s.InflatorSpec, "cavity.inflator."),
             ("[[exchange]]", s.ExchangeSpec, "exchange."), ("[[body]]", s.BodySpec, "body."),
-            ("[[contact]]", s.ContactSpec, "contact.")]
+            ("[[contact]]", s.ContactSpec, "contact."), ("[limits]", s.LimitsSpec, "limits.")]
 
 
 def key_reference() -> str:

@@ -1,16 +1,27 @@
 """Write a run's results atomically: history.csv, summary.json, history.png, and with contact contact.npz
-(per seat node CPRESS [Pa] and status at the output times) (temp file, then rename)."""
+(per seat node CPRESS [Pa] and status at the output times) (temp file, then rename).
+
+``ventsim run`` writes them as one set (:func:`output_set`): into a fresh hidden folder beside ``--out``, which
+then replaces ``--out`` as a whole, so a run killed at any moment leaves either the complete earlier set or the
+complete new one, never a mix; hidden folders and temp files of an earlier killed run are removed first.
+"""
 from __future__ import annotations
 
+import fnmatch
 import json
 import os
+import shutil
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["atomic_path", "write_history", "write_summary", "history_figure", "plot_history", "write_results"]
+__all__ = ["atomic_path", "write_history", "write_summary", "history_figure", "plot_history", "write_results",
+           "check_out", "output_set", "remove_temp_files", "OUTPUT_NAMES"]
+
+#: What an output folder of ``ventsim run`` may hold (patterns): only such a folder is replaced as a whole.
+OUTPUT_NAMES = ("history.csv", "summary.json", "history.png", "contact.npz", "*.png", "*.gif", "vtk", "scene")
 
 
 @contextmanager
@@ -110,3 +121,88 @@ def write_results(results, out: Path) -> dict:
             with open(tmp, "wb") as fh:
                 np.savez_compressed(fh, **results.contact)
     return paths
+
+
+def check_out(out: Path) -> None:
+    """Refuse, before a run, an ``--out`` that is a file, or a folder holding files a run did not write (it is
+    replaced as a whole); raises SceneError."""
+    from .errors import SceneError
+
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise SceneError(out, "--out", "is a file; expected an output folder (new, or one of an earlier run)")
+    if out.is_dir():
+        foreign = sorted(p.name for p in out.iterdir() if not _ours(p.name))
+        if foreign:
+            raise SceneError(out, "--out", f"holds files a run did not write ({', '.join(foreign[:3])}"
+                                           f"{', ...' if len(foreign) > 3 else ''}); the folder is replaced as a "
+                                           "whole: choose a new or empty folder")
+    parent = out.resolve().parent
+    if parent.exists() and not os.access(parent, os.W_OK):
+        raise SceneError(out, "--out", f"cannot write in {str(parent)!r}")
+
+
+def _stale(out: Path) -> list:
+    """Hidden leftovers of earlier runs into ``out``: staging and old folders beside it."""
+    parent, name = out.parent, out.name
+    found = [p for p in parent.glob(f".{name}.new-*")] + [p for p in parent.glob(f".{name}.old-*")]
+    return found
+
+
+def remove_temp_files(folder: Path) -> None:
+    """Remove the temp files :func:`atomic_path` left in ``folder`` when a writer was killed."""
+    folder = Path(folder)
+    if folder.is_dir():
+        for p in folder.glob(".*"):
+            if p.is_file() and _temp_file(p.name):
+                p.unlink(missing_ok=True)
+
+
+def _temp_file(name: str) -> bool:
+    """A temp file of :func:`atomic_path` for one of the outputs or a sweep variant's row.json
+    (``.history.csv.k2j3.csv``)."""
+    return any(name.startswith(f".{n}.") for n in OUTPUT_NAMES + ("row.json",) if "*" not in n)
+
+
+def _ours(name: str) -> bool:
+    return _temp_file(name) or any(fnmatch.fnmatch(name, pat) for pat in OUTPUT_NAMES)
+
+
+def _clean(out: Path) -> None:
+    """Remove what a killed run left; if it was killed between its two renames, put the old set back first."""
+    olds = [p / "set" for p in sorted(out.parent.glob(f".{out.name}.old-*")) if (p / "set").is_dir()]
+    if not out.exists() and olds:
+        os.replace(olds[-1], out)
+    for p in _stale(out):
+        shutil.rmtree(p, ignore_errors=True)
+    remove_temp_files(out)
+
+
+@contextmanager
+def output_set(out: Path):
+    """Yield a fresh hidden folder beside ``out`` to write a run's outputs into; on success it replaces ``out``
+    as a whole (the earlier set, if any, is removed after the swap). A failure leaves ``out`` as it was."""
+    out = Path(out)
+    check_out(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    _clean(out)
+    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.new-", dir=out.parent))
+    try:
+        yield stage
+        os.chmod(stage, 0o777 & ~_umask())
+        if out.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old-", dir=out.parent))
+            os.replace(out, old / "set")
+            os.replace(stage, out)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            os.replace(stage, out)
+    finally:
+        if stage.exists():
+            shutil.rmtree(stage, ignore_errors=True)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

@@ -1,24 +1,29 @@
 """Run a scene: build the model, integrate it, and reduce the trajectory to a history and a summary."""
 from __future__ import annotations
 
+import math
 import time
-from dataclasses import dataclass, field
+import warnings
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from cavity.integration import Trajectory, integrate
+from cavity.caution import VentsimWarning
+from cavity.integration import SolverError, Trajectory, integrate
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 
-from .build import Model, build_model
+from .build import Model, build_model, unique_messages
 from .build_leak import blockage_rule
 from .contact_results import contact_columns, contact_row, contact_summary, nodal_history
 from .body_outputs import body_columns
+from .errors import SceneError
 from .history_outputs import engineering_columns
 from .provenance import provenance
 from .scene import Scene, load_scene
+from .species_range import species_range_warnings
 
-__all__ = ["Results", "run", "run_scene", "history_columns"]
+__all__ = ["Results", "RunError", "run", "run_scene", "history_columns"]
 
 
 @dataclass
@@ -136,14 +141,21 @@ def compiled_readback(model: Model, traj: Trajectory):
     return read
 
 
-def history_rows(model: Model, traj: Trajectory, times, readback=None) -> np.ndarray:
+def history_rows(model: Model, traj: Trajectory, times, readback=None, deadline: float = math.inf) -> np.ndarray:
     """The history at ``times`` [s] (columns of :func:`history_columns`): one compiled call with a
-    :func:`compiled_readback`, else (or if that fails) row by row with :func:`quantities`."""
+    :func:`compiled_readback`, else (or if that fails) row by row with :func:`quantities`, stopping with a
+    SolverError once ``time.perf_counter()`` passes ``deadline``."""
     rows = readback(times) if readback is not None else None
     if rows is not None:
         return rows
     ys = traj.sample(times)
-    return np.array([quantities(model, t, y, traj.mode_at(t)) for t, y in zip(times, ys)])
+    out = []
+    for k, (t, y) in enumerate(zip(times, ys)):
+        if k % 256 == 255 and time.perf_counter() > deadline:
+            raise SolverError(f"out of wall time (max_wall) writing history rows: {k} of {len(times)} done; "
+                              "raise time.output_interval")
+        out.append(quantities(model, t, y, traj.mode_at(t)))
+    return np.array(out)
 
 
 def compiled_cavity_values(model: Model, traj: Trajectory, readback):
@@ -171,16 +183,63 @@ def cavity_summary(model: Model, traj: Trajectory, y1, readback=None) -> dict:
     return out
 
 
-def run(model: Model, *, progress: bool = False) -> Results:
-    """Integrate a built model and reduce it."""
+class RunError(SceneError, SolverError):
+    """A run that started but could not finish (the integrator stopped: step budget, step size, wall time, no
+    temperature for an internal energy); ``partial`` holds the Results up to where it stopped, or None. It is a
+    SceneError (one line for the user) and a SolverError (what the integrator raised)."""
+
+    def __init__(self, file, message: str, partial=None):
+        super().__init__(file, "", message)
+        self.partial = partial
+
+
+def run(model: Model, *, progress: bool = False, max_wall: float | None = None) -> Results:
+    """Integrate a built model and reduce it; ``max_wall`` [s] overrides the scene's ``limits.wall``.
+
+    The VentsimWarnings of building and running are in ``summary["warnings"]``. A run the integrator cannot
+    finish raises :class:`RunError` (one line: what went wrong and the state), holding the partial results.
+    """
+    options = model.options if not max_wall else replace(model.options, max_wall=float(max_wall))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", VentsimWarning)
+        try:
+            results = _run(model, options, progress)
+        except SolverError as exc:
+            partial = _partial(model, options, exc)
+            raise RunError(model.scene.path if model.scene._path else "<scene built in Python>",
+                           f"the run stopped: {exc}", partial) from None
+    messages = unique_messages(model.warnings + [w for w in caught if issubclass(w.category, VentsimWarning)]
+                               + species_range_warnings(model, results.history))
+    if messages:
+        results.summary["warnings"] = messages
+    return results
+
+
+def _partial(model: Model, options, exc) -> Results | None:
+    """The results up to where a failed run stopped (history rows at the output times before it), or None."""
+    traj = getattr(exc, "trajectory", None)
+    if traj is None or not traj.segments:
+        return None
+    try:
+        times = model.output_times[model.output_times <= traj.t_final]
+        history = history_rows(model, traj, times) if times.size else np.empty((0, len(history_columns(model))))
+    except Exception:  # noqa: BLE001 - what was integrated may not even be readable; report the failure alone
+        return None
+    summary = {"title": model.scene.title, "scene": str(model.scene.path), "error": str(exc),
+               "stopped at [s]": traj.t_final, "solver": {"method": options.method, "rtol": options.rtol,
+                                                          **traj.stats}, "warnings": list(model.warnings)}
+    return Results(model, traj, history_columns(model), history, summary, None)
+
+
+def _run(model: Model, options, progress: bool) -> Results:
     net = model.network
     y0 = net.initial_state()
     t_end = model.scene.time.end
     start = time.perf_counter()
-    traj = integrate(net, y0, 0.0, t_end, model.options, progress=progress)
+    traj = integrate(net, y0, 0.0, t_end, options, progress=progress)
     wall = time.perf_counter() - start
     readback = compiled_readback(model, traj)
-    history = history_rows(model, traj, model.output_times, readback)
+    history = history_rows(model, traj, model.output_times, readback, start + options.max_wall)
     net.restore(traj.modes[-1])
     y1 = traj(t_end)
     summary = {"title": model.scene.title, "scene": str(model.scene.path), "end time [s]": t_end,
@@ -248,7 +307,7 @@ def impactor_summary(model: Model, traj: Trajectory) -> dict:
             "final speed [m/s]": float(ys[-1, k + 1])}
 
 
-def run_scene(path_or_scene, *, progress: bool = False) -> Results:
-    """Load (if given a path), build and run a scene."""
+def run_scene(path_or_scene, *, progress: bool = False, max_wall: float | None = None) -> Results:
+    """Load (if given a path), build and run a scene (``max_wall``: see :func:`run`)."""
     scene = path_or_scene if isinstance(path_or_scene, Scene) else load_scene(path_or_scene)
-    return run(build_model(scene), progress=progress)
+    return run(build_model(scene), progress=progress, max_wall=max_wall)

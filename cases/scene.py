@@ -15,12 +15,13 @@ from cavity.integration import METHODS
 
 from .errors import SceneError
 from .schema import key, parse
-from .scene_checks import check_cross_references
-from .scene_contact import ContactSpec, check_contacts
-from .tables_io import table_or_constant
+from .scene_contact import ContactSpec
+from .scene_validate import register_specs, validate_scene
+from .scene_values import composition as _composition, cp_coefficients, names_list as _names, vector as _vector
+from .tables_io import read_text, table_or_constant
 
 __all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
-           "ExchangeSpec", "ContactSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
+           "ExchangeSpec", "ContactSpec", "LimitsSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss", "wall")
 LAWS = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",
@@ -42,6 +43,21 @@ class SolverSpec:
     atol: float = key("absolute tolerance as a fraction of each unknown's scale (initial plus inflated mass, "
                       "and the matching energy); 0: rtol/100", default=0.0, check="nonnegative")
     max_step: float = key("largest step (0: unlimited)", "s", default=0.0, check="nonnegative")
+
+
+@dataclass(frozen=True, kw_only=True)
+class LimitsSpec:
+    """Work budgets, checked before the work starts: exceeding one is a clear error, never a hang."""
+
+    output_rows: int = key("most rows of history.csv (time.end / time.output_interval + 1)", default=1_000_000,
+                           bounds=(2, 10 ** 9))
+    table_rows: int = key("most rows of any CSV table", default=100_000, bounds=(1, 10 ** 9))
+    mesh_faces: int = key("most faces of any mesh (a body's sphere: 20·4^subdivisions)", default=2_000_000,
+                          bounds=(1, 10 ** 9))
+    steps: int = key("most integration steps of a run (a stiff scene stops here with advice)", default=2_000_000,
+                     bounds=(1, 10 ** 10))
+    wall: float = key("most wall time of the integration and its history rows (0: unlimited; `ventsim run "
+                      "--max-wall` overrides)", "s", default=3600.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -193,8 +209,8 @@ class ExchangeSpec:
     blocked_by: tuple = key("bodies that block the leakage surface", default=())
     contact_tolerance: float = key("a leakage node is blocked when its gap to a body is <= this", "m",
                                    default=0.0, check="nonnegative")
-    effective_area: float = key("with a leakage surface: area = effective_area·(1 − obstruction/total)", "m^2",
-                                default=0.0, check="nonnegative")
+    effective_area: float = key("with a leakage surface: area = effective_area·(1 − obstruction/total) "
+                                "(omitted: the surface's own area)", "m^2", default=None, check="positive")
     permeability: float = key("fraction of the blocked area that still leaks (Radioss Bvent)", default=0.0,
                               check="fraction")
     leakage_nodes: str = key("or: a node-based leakage surface, CSV of x, y, z [m] and optionally area [m^2] per "
@@ -213,7 +229,7 @@ class BodySpec:
     name: str = key("body name (named by `blocked_by` and `wrapped_by`)")
     mesh: str = key("body surface mesh file (metres; convex if it wraps a cavity)", default="")
     sphere: tuple = key("a sphere instead of a mesh: centre x, y, z and radius", "m", default=())
-    sphere_subdivisions: int = key("icosphere subdivisions of `sphere` (4: 5120 faces)", default=4)
+    sphere_subdivisions: int = key("icosphere subdivisions of `sphere` (4: 5120 faces)", default=4, bounds=(0, 9))
     box: tuple = key("a box instead of a mesh: centre x, y, z and extents lx, ly, lz", "m", default=())
     axis: tuple = key("direction of motion (normalised)", default=(0.0, 0.0, -1.0))
     velocity: float = key("prescribed constant speed along `axis`", "m/s", default=0.0, check="finite")
@@ -251,6 +267,7 @@ class Scene:
     body: tuple = key("[[body]] tables: rigid bodies that block vents and wrap cavities", default=())
     contact: tuple = key("[[contact]] tables: contact of the dynamic body with a seat surface (docs/contact.md)",
                          default=())
+    limits: LimitsSpec = key("[limits] table: work budgets", default=LimitsSpec())
     _path: str = ""
 
     @property
@@ -267,10 +284,8 @@ class Scene:
 def read_scene_data(path) -> dict:
     """The parsed TOML of a scene file, before validation (SceneError if missing or not TOML)."""
     path = Path(path)
-    if not path.is_file():
-        raise SceneError(path, "", "scene file does not exist")
     try:
-        return tomllib.loads(path.read_text())
+        return tomllib.loads(read_text(path, path, "", "scene file"))
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(path, "", f"not valid TOML: {exc}") from None
 
@@ -296,30 +311,16 @@ def _converters(path: Path, base: Path) -> SimpleNamespace:
         return convert
 
     def composition(value, where):
-        if not isinstance(value, dict) or not value:
-            raise SceneError(path, where, "expected a table {species = fraction}")
-        for k, v in value.items():
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v >= 0):
-                raise SceneError(path, f"{where}.{k}", f"expected a fraction >= 0, got {v!r}")
-        if sum(value.values()) <= 0:
-            raise SceneError(path, where, "fractions sum to zero")
-        return dict(value)
+        return _composition(value, path, where)
 
     def table(name):
         return lambda v, where: None if v is None else table_or_constant(v, base, path, where, name)
 
-    def vector(n):
-        def convert(v, where):
-            if (not isinstance(v, list) or len(v) != n
-                    or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in v)):
-                raise SceneError(path, where, f"expected a list of {n} finite numbers, got {v!r}")
-            return tuple(float(x) for x in v)
-        return convert
+    def vector(n, nonzero=False):
+        return lambda v, where: _vector(v, n, path, where, nonzero=nonzero)
 
     def names_list(v, where):
-        if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
-            raise SceneError(path, where, f"expected a list of body names, got {v!r}")
-        return tuple(v)
+        return _names(v, path, where)
 
     def number_or_table(name):
         def convert(v, where):
@@ -348,22 +349,22 @@ def scene_from_dict(data: dict, path) -> Scene:
         "time": lambda v, w: parse(TimeSpec, v, path, w),
         "solver": lambda v, w: parse(SolverSpec, v, path, w),
         "ambient": lambda v, w: parse(AmbientSpec, v, path, w, nested={"gas": composition}),
-        "species": many(SpeciesSpec, {"cp": lambda v, w: tuple(v)}),
+        "species": many(SpeciesSpec, {"cp": lambda v, w: cp_coefficients(v, path, w)}),
         "cavity": many(CavitySpec, cavity_nested),
-        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3),
-                                "rotation_axis": vector(3), "rotation_centre": vector(3)}),
+        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3, True),
+                                "rotation_axis": vector(3, True), "rotation_centre": vector(3)}),
         "contact": many(ContactSpec),
+        "limits": lambda v, w: parse(LimitsSpec, v, path, w),
         "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,
                                         "discharge_coefficient": number_or_table("discharge coefficient [-]"),
                                         "flux_amplitude": table("flux amplitude [-]"),
                                         "amplitude": table("area amplitude [-]")}),
     })
     scene = replace(scene, _path=str(path))
-    check_cross_references(scene, path)
-    if any(c.fluid == "real_gas" or c.energy == "wall" or any(i.tank_gas == "real_gas" for i in c.inflator)
-           for c in scene.cavity):
-        from .scene_realgas import check_real_gas
-
-        check_real_gas(scene)
-    check_contacts(scene, path, data)
+    validate_scene(scene, data)
     return scene
+
+
+register_specs(Scene=Scene, TimeSpec=TimeSpec, SolverSpec=SolverSpec, AmbientSpec=AmbientSpec, LimitsSpec=LimitsSpec,
+               SpeciesSpec=SpeciesSpec, CavitySpec=CavitySpec, InflatorSpec=InflatorSpec, ExchangeSpec=ExchangeSpec,
+               BodySpec=BodySpec, ContactSpec=ContactSpec)

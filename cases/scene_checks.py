@@ -8,7 +8,18 @@ from .errors import SceneError
 from .schema import unknown_name
 from .tables_io import read_table
 
-__all__ = ["check_cross_references"]
+__all__ = ["check_cross_references", "require_file"]
+
+
+def require_file(scene, name: str, path, where: str) -> None:
+    """A file a scene names (if it names one) exists and is a file, relative to the scene's folder."""
+    if not name:
+        return
+    target = scene.base / name
+    if target.is_dir():
+        raise SceneError(path, where, f"{name!r} is a directory, not a file")
+    if not target.is_file():
+        raise SceneError(path, where, f"file {name!r} does not exist")
 
 
 def check_cross_references(scene: Scene, path) -> None:
@@ -27,8 +38,7 @@ def check_cross_references(scene: Scene, path) -> None:
         if c.mesh_series and c.wrapped_by:
             raise SceneError(path, f"{where}.wrapped_by", "a mesh series already gives every node's position")
         for f in ("volume_table", "mesh", "mesh_scale_table", "mesh_series"):
-            if getattr(c, f) and not (scene.base / getattr(c, f)).is_file():
-                raise SceneError(path, f"{where}.{f}", f"file {getattr(c, f)!r} does not exist")
+            require_file(scene, getattr(c, f), path, f"{where}.{f}")
         if c.volume_table:
             _require(read_table(scene.base / c.volume_table, path, f"{where}.volume_table", "volume [m^3]"),
                      path, f"{where}.volume_table", positive=True)
@@ -43,8 +53,7 @@ def check_cross_references(scene: Scene, path) -> None:
                     raise SceneError(path, f"{where}.{k}", "required (> 0) for a hydraulic cavity")
             if c.inflator or c.energy != "adiabatic" or c.wrapped_by:
                 raise SceneError(path, where, "a hydraulic cavity has no inflators, energy model or wrapping")
-            if c.temperature_table and not (scene.base / c.temperature_table).is_file():
-                raise SceneError(path, f"{where}.temperature_table", f"file {c.temperature_table!r} does not exist")
+            require_file(scene, c.temperature_table, path, f"{where}.temperature_table")
     _check_bodies(scene, path)
     for i, e in enumerate(scene.exchange):
         for side, value in (("from", e.from_), ("to", e.to)):
@@ -68,8 +77,7 @@ def _check_bodies(scene: Scene, path) -> None:
             raise SceneError(path, f"body[{i}]", "give exactly one of mesh, sphere, box, mesh_series "
                                                  f"(got {shapes or 'none'})")
         for k in ("mesh", "mesh_series"):
-            if getattr(b, k) and not (scene.base / getattr(b, k)).is_file():
-                raise SceneError(path, f"body[{i}].{k}", f"file {getattr(b, k)!r} does not exist")
+            require_file(scene, getattr(b, k), path, f"body[{i}].{k}")
         if b.mesh_series and (b.mass or b.velocity or b.displacement_table or b.rotation_table or
                               b.vertex_trajectory):
             raise SceneError(path, f"body[{i}].mesh_series", "a mesh series is the body's whole motion")
@@ -80,8 +88,7 @@ def _check_bodies(scene: Scene, path) -> None:
         if b.vertex_trajectory and (b.velocity or b.displacement_table or b.rotation_table):
             raise SceneError(path, f"body[{i}].vertex_trajectory", "replaces velocity, displacement and rotation")
         for k in ("rotation_table", "vertex_trajectory"):
-            if getattr(b, k) and not (scene.base / getattr(b, k)).is_file():
-                raise SceneError(path, f"body[{i}].{k}", f"file {getattr(b, k)!r} does not exist")
+            require_file(scene, getattr(b, k), path, f"body[{i}].{k}")
         forces = ("spring_stiffness", "spring_preload", "pressure_area", "pressure_cavity")
         given = [k for k in forces if getattr(b, k)]
         if given and not b.mass:
@@ -109,8 +116,7 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
     for k in LAW_KEYS.get(e.law, ()):
         if not getattr(e, k):
             raise SceneError(path, f"{where}.{k}", f"required for law {e.law!r}")
-    if e.leakage_table and not (scene.base / e.leakage_table).is_file():
-        raise SceneError(path, f"{where}.leakage_table", f"file {e.leakage_table!r} does not exist")
+    require_file(scene, e.leakage_table, path, f"{where}.leakage_table")
     if e.law in ("mass_flux", "volume_flux") and e.flux == 0.0:
         raise SceneError(path, f"{where}.flux", f"required (non-zero) for law {e.law!r}")
     sources = [k for k in ("leakage_surface", "leakage_box", "leakage_nodes") if getattr(e, k)]
@@ -118,8 +124,7 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
     if len(sources) > 1:
         raise SceneError(path, f"{where}.{sources[1]}", "give one of leakage_surface, leakage_box, leakage_nodes")
     for k in ("leakage_surface", "leakage_nodes"):
-        if getattr(e, k) and not (scene.base / getattr(e, k)).is_file():
-            raise SceneError(path, f"{where}.{k}", f"file {getattr(e, k)!r} does not exist")
+        require_file(scene, getattr(e, k), path, f"{where}.{k}")
     cavity = next((c for c in scene.cavity if c.name == e.from_), None)
     if e.leakage_box and cavity is not None and not (cavity.mesh or cavity.mesh_series):
         raise SceneError(path, f"{where}.leakage_box", "selects faces of the `from` cavity's mesh: it has none")

@@ -80,8 +80,10 @@ def _check_seat(scene, c, path, where, exchanges) -> None:
         if not e.leakage_surface:
             raise SceneError(path, f"{where}.seat", f"exchange {c.seat!r} has no leakage_surface (the seat must be "
                                                     "a fixed surface of its own)")
-    elif not (scene.base / c.seat_mesh).is_file():
-        raise SceneError(path, f"{where}.seat_mesh", f"file {c.seat_mesh!r} does not exist")
+    else:
+        from .scene_checks import require_file
+
+        require_file(scene, c.seat_mesh, path, f"{where}.seat_mesh")
 
 
 def _check_law(c, path, where, given) -> None:

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import hashlib
 import json
 import logging
 import os
@@ -30,11 +29,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .errors import SceneError
+from .sweep_folder import MANIFEST, write_json
 
 __all__ = ["sweep", "SweepResult", "Plan", "plan_sweep", "run_variant", "run_variants", "batch_size", "figures",
            "dask_client", "add_sweep_parser", "RESULTS_CSV", "RESULTS_PARQUET", "PLOT", "MANIFEST"]
 
-RESULTS_CSV, RESULTS_PARQUET, PLOT, MANIFEST = "results.csv", "results.parquet", "sweep.png", "sweep.json"
+RESULTS_CSV, RESULTS_PARQUET, PLOT = "results.csv", "results.parquet", "sweep.png"
 ROW = "row.json"  # in each variant's folder, written last: the variant is finished
 DESIGNS = ("full", "list", "lhs")
 
@@ -88,15 +88,11 @@ def figures(results) -> dict:
     return out
 
 
-def _write_json(path: Path, obj) -> None:
-    from .output import atomic_path
-
-    with atomic_path(path) as tmp:
-        tmp.write_text(json.dumps(obj, indent=1) + "\n")
-
-
-def run_variant(data: dict, path, out_dir, inputs: dict | None = None) -> dict:
+def run_variant(data: dict, path, out_dir, inputs: dict | None = None, timeout: float | None = None) -> dict:
     """Validate, run and write one variant; return its record (never raises for a bad variant).
+
+    ``timeout`` [s]: the integration's wall-time budget (``max_wall`` of :func:`cases.runner.run`); a variant
+    that exceeds it is recorded as failed with the time and state where it stopped.
 
     ``data`` is the scene's TOML data with the variant's values in, ``path`` the original scene file (relative
     table names resolve against it), ``out_dir`` the variant's folder (its name is the variant's id). The record
@@ -104,7 +100,7 @@ def run_variant(data: dict, path, out_dir, inputs: dict | None = None) -> dict:
     ``out_dir/row.json``, last.
     """
     from .build import build_model
-    from .output import write_history, write_summary
+    from .output import remove_temp_files, write_history, write_summary
     from .runner import run
     from .scene import scene_from_dict
 
@@ -112,8 +108,9 @@ def run_variant(data: dict, path, out_dir, inputs: dict | None = None) -> dict:
     record = {"id": out_dir.name, "status": "ok", "inputs": dict(inputs or {}), "figures": {},
               "wall_time [s]": None, "error": ""}
     start = time.perf_counter()
+    remove_temp_files(out_dir)  # of a worker killed while writing this variant before
     try:
-        results = run(build_model(scene_from_dict(data, path)))
+        results = run(build_model(scene_from_dict(data, path)), max_wall=timeout)
         record["figures"] = figures(results)
         results.summary["variant"] = {"id": record["id"], "inputs": record["inputs"]}
         write_history(out_dir / "history.csv", results.columns, results.history)
@@ -125,31 +122,14 @@ def run_variant(data: dict, path, out_dir, inputs: dict | None = None) -> dict:
         out_dir.mkdir(parents=True, exist_ok=True)
         (out_dir / "error.txt").write_text(traceback.format_exc())
     record["wall_time [s]"] = time.perf_counter() - start
-    _write_json(out_dir / ROW, record)
+    write_json(out_dir / ROW, record)
     return record
 
 
-def run_variants(batch: list, path) -> list:
+def run_variants(batch: list, path, timeout: float | None = None) -> list:
     """Several variants in one task, ``batch`` = [(data, out_dir, inputs), ...]: for cheap variants, fewer tasks
     to schedule. Each variant is written (and recorded) as it finishes, as with :func:`run_variant`."""
-    return [run_variant(data, path, out_dir, inputs) for data, out_dir, inputs in batch]
-
-
-# ------------------------------------------------------------------------------------------ sweep folder
-
-def _check_manifest(out: Path, plan: Plan) -> None:
-    """A sweep folder belongs to one scene (its parsed data): refuse to mix results of another."""
-    from .sweep_design import SweepError
-
-    digest = hashlib.sha256(json.dumps(plan.data, sort_keys=True, default=str).encode()).hexdigest()[:16]
-    path = out / MANIFEST
-    if path.is_file():
-        old = json.loads(path.read_text())
-        if old.get("scene hash") != digest:
-            raise SweepError(f"{out}: holds a sweep of another scene ({old.get('scene')}, or it changed since): "
-                             "choose another --out, or delete the folder")
-    _write_json(path, {"scene": str(plan.scene), "scene hash": digest, "keys": list(plan.keys),
-                       "variants": len(plan.variants)})
+    return [run_variant(data, path, out_dir, inputs, timeout) for data, out_dir, inputs in batch]
 
 
 # ------------------------------------------------------------------------------------------ running on Dask
@@ -245,7 +225,7 @@ def _deferred_interrupt():
         signal.signal(signal.SIGINT, previous)
 
 
-def _execute(client, plan: Plan, todo: list, out: Path, table, progress, on_row, batch=None) -> None:
+def _execute(client, plan: Plan, todo: list, out: Path, table, progress, on_row, batch=None, timeout=None) -> None:
     """Submit the variants as tasks of ``batch`` variants (default :func:`batch_size`); record each as its task
     completes (into ``table``, a ResultsTable); on any interruption cancel the rest."""
     from dask.distributed import as_completed
@@ -257,7 +237,7 @@ def _execute(client, plan: Plan, todo: list, out: Path, table, progress, on_row,
     tag = uuid.uuid4().hex[:8]
     futures = client.map(run_variants, [[(plan.scene_data(inputs), str(out / "variants" / vid), inputs)
                                          for vid, inputs in chunk] for chunk in chunks],
-                         path=str(plan.scene), key=[f"ventsim-variants-{chunk[0][0]}-{tag}" for chunk in chunks])
+                         path=str(plan.scene), timeout=timeout, key=[f"ventsim-variants-{chunk[0][0]}-{tag}" for chunk in chunks])
     pending = dict(zip(futures, chunks))
     done = as_completed(futures, with_results=True)  # results are fetched in the background, as they finish
     try:
@@ -315,7 +295,7 @@ class SweepResult:
 
 def sweep(scene, vary=None, *, out, design: str = "full", samples=None, seed: int = 0, variants=None,
           scheduler=None, workers=None, client=None, batch=None, retry_failed: bool = False, plot: bool = True,
-          progress: bool = True, on_row=None) -> SweepResult:
+          progress: bool = True, on_row=None, timeout: float | None = None) -> SweepResult:
     """Run the variants of ``scene`` on Dask into folder ``out``; skip those finished there before.
 
     ``vary``: {key: values}, values a list or text as on the command line (``"linspace(1e-4,4e-4,4)"``), combined
@@ -323,13 +303,23 @@ def sweep(scene, vary=None, *, out, design: str = "full", samples=None, seed: in
     ``samples`` points, ``seed``); or ``variants``: a CSV file (a header of keys) or a list of {key: value}.
     ``scheduler``: an address to connect to; otherwise a LocalCluster of ``workers`` processes. ``client``: an
     existing ``dask.distributed.Client`` to use (left open). ``batch``: variants per task (default: see
-    :func:`batch_size`). ``on_row(row)`` is called with each new flat row.
+    :func:`batch_size`). ``on_row(row)`` is called with each new flat row. ``timeout`` [s]: each variant's
+    integration wall-time budget (a variant over it fails). One sweep at a time writes a folder (a lock file,
+    ``.sweep.lock``, held while it runs: a second one fails at once).
     """
-    from .sweep_plot import Progress, ResultsTable, flat, load_records, plot_sweep
+    from .sweep_folder import check_manifest, folder_lock
 
     plan = plan_sweep(scene, vary, design=design, samples=samples, seed=seed, variants=variants)
     out = Path(out).resolve()
-    _check_manifest(out, plan)
+    with folder_lock(out):
+        check_manifest(out, plan)
+        return _sweep_locked(plan, out, scheduler, workers, client, batch, retry_failed, plot, progress, on_row,
+                             timeout)
+
+
+def _sweep_locked(plan, out, scheduler, workers, client, batch, retry_failed, plot, progress, on_row, timeout):
+    from .sweep_plot import Progress, ResultsTable, flat, load_records, plot_sweep
+
     before = load_records(out)
     todo = [(vid, inputs) for vid, inputs in plan.variants
             if vid not in before or (retry_failed and before[vid]["status"] != "ok")]
@@ -339,7 +329,7 @@ def sweep(scene, vary=None, *, out, design: str = "full", samples=None, seed: in
         if todo:
             with contextlib.nullcontext(client) if client is not None else \
                     dask_client(scheduler, workers, len(todo)) as c:
-                _execute(c, plan, todo, out, table, bar, on_row, batch)
+                _execute(c, plan, todo, out, table, bar, on_row, batch, timeout)
     finally:
         bar.close()
     paths = table.flush()
@@ -375,6 +365,8 @@ def add_sweep_parser(sub) -> argparse.ArgumentParser:
     s.add_argument("--batch", type=int, metavar="N", help="variants per Dask task (default: 1, more when there "
                                                           "are many cheap variants per worker)")
     s.add_argument("--retry-failed", action="store_true", help="run failed variants again")
+    s.add_argument("--variant-timeout", type=float, metavar="SECONDS",
+                   help="wall-time budget of each variant's integration; a variant over it is recorded as failed")
     s.add_argument("--no-plot", action="store_true", help="do not write sweep.png")
     s.add_argument("--quiet", action="store_true", help="print nothing but errors")
     s.set_defaults(func=_cli)
@@ -387,9 +379,12 @@ def _cli(args) -> int:
     for name in ("workers", "batch"):
         if getattr(args, name) is not None and getattr(args, name) < 1:
             raise SweepError(f"--{name} {getattr(args, name)}: expected a number >= 1")
+    if args.variant_timeout is not None and not 0 < args.variant_timeout < float("inf"):
+        raise SweepError(f"--variant-timeout {args.variant_timeout}: expected a number of seconds > 0")
     res = sweep(args.scene, parse_vary(args.vary), out=args.out, design=args.design, samples=args.samples,
                 seed=args.seed, variants=args.variants, scheduler=args.scheduler, workers=args.workers,
-                batch=args.batch, retry_failed=args.retry_failed, plot=not args.no_plot, progress=not args.quiet)
+                batch=args.batch, retry_failed=args.retry_failed, plot=not args.no_plot, progress=not args.quiet,
+                timeout=args.variant_timeout)
     n = res.counts
     if not args.quiet:
         lost = f", {n['lost']} lost (run again to retry)" if n["lost"] else ""

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import SceneError
+from .errors import SceneError, SweepError
 from .schema import suggest, toml_name
 from .sweep import DESIGNS
 
@@ -39,14 +39,6 @@ __all__ = ["SweepError", "DESIGNS", "parse_values", "parse_vary", "parse_scalar"
            "canonical"]
 
 _RANGES = {"linspace": np.linspace, "geomspace": np.geomspace}
-
-
-class SweepError(SceneError):
-    """A sweep that cannot start (bad ``--vary``, design or variants file); ``str()`` is one line."""
-
-    def __init__(self, message: str):
-        ValueError.__init__(self, message)
-        self.file, self.where = "", ""
 
 
 # ---------------------------------------------------------------------------------------------------- values

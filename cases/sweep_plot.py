@@ -51,8 +51,9 @@ def arrow_column(values: list):
     return pa.array([None if v is None else str(v) for v in values], pa.string())
 
 
-def write_table(out: Path, records: list, keys) -> dict:
-    """``results.csv`` (floats in full precision) and ``results.parquet`` of ``records``, each atomically."""
+def write_table(out: Path, records: list, keys, *, parquet: bool = True) -> dict:
+    """``results.csv`` (floats in full precision) and (with ``parquet``) ``results.parquet`` of ``records``, each
+    atomically."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -63,6 +64,8 @@ def write_table(out: Path, records: list, keys) -> dict:
         w = csv.writer(fh)
         w.writerow(cols)
         w.writerows([["" if r.get(c) is None else r.get(c) for c in cols] for r in rows])
+    if not parquet:
+        return {"results": paths["results"]}
     table = pa.table({c: arrow_column([r.get(c) for r in rows]) for c in cols})
     with atomic_path(paths["parquet"]) as tmp:
         pq.write_table(table, tmp)
@@ -70,7 +73,8 @@ def write_table(out: Path, records: list, keys) -> dict:
 
 
 class ResultsTable:
-    """The sweep folder's records (by id); rewrites the result files at most every ``every`` seconds."""
+    """The sweep folder's records (by id); rewrites results.csv after every record (a killed sweep leaves it
+    current) and results.parquet at most every ``every`` seconds."""
 
     def __init__(self, out: Path, keys, order: list, records: dict, every: float = 1.0):
         self.out, self.keys, self.records, self.every = out, keys, dict(records), every
@@ -87,6 +91,8 @@ class ResultsTable:
         self.dirty = True
         if time.monotonic() - self.last >= self.every:
             self.flush()
+        else:
+            write_table(self.out, self.ordered(), self.keys, parquet=False)
 
     def flush(self) -> dict:
         """Rewrite the result files if anything changed; a large table is rewritten less often (at most 5% of

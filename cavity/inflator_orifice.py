@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .caution import caution
 from .gas import Mixture
 from .inflator import quadrature_mass, scheduled_breakpoints, table_mass
 
@@ -59,7 +60,14 @@ def dual_pressure_mass_flow(p_inflator: float, tank_pressure_rate: float, tank_v
     return gamma * (Cd * area * p_inflator * _choked_factor(gamma)) ** 2 / (tank_volume * tank_pressure_rate)
 
 
-def _clamped(T: float) -> float:
+def _clamped(T: float, name: str = "", last: bool = False) -> float:
+    """T held in :data:`T_BOUNDS` [K]; with ``last`` (the final iterate) a :class:`~cavity.caution.VentsimWarning`
+    when it had to be."""
+    if T_BOUNDS[0] <= T <= T_BOUNDS[1]:
+        return T
+    if last:
+        caution(f"inflator {name!r}: the gas temperature from the orifice relation left [{T_BOUNDS[0]:g}, "
+                f"{T_BOUNDS[1]:g}] K and was held at the bound: check its pressure and mass flow tables")
     return min(max(T, T_BOUNDS[0]), T_BOUNDS[1])
 
 
@@ -85,9 +93,10 @@ class PressureMassInflator:
         if mdot <= 0.0 or p <= 0.0:
             return T_BOUNDS[0]
         T = 1000.0
-        for _ in range(GAMMA_ITERATIONS):
+        for k in range(GAMMA_ITERATIONS):
             T = _clamped(choked_inflator_temperature(mdot, p, self.area, self.discharge_coefficient,
-                                                     self.gas.gas_constant, self.gas.gamma(T)))
+                                                     self.gas.gas_constant, self.gas.gamma(T)),
+                         self.name, k == GAMMA_ITERATIONS - 1)
         return T
 
     @property
@@ -119,10 +128,11 @@ class DualPressureInflator:
         if rate <= 0.0 or p <= 0.0:
             return 0.0, T_BOUNDS[0]
         T, mdot = 1000.0, 0.0
-        for _ in range(GAMMA_ITERATIONS):
+        for k in range(GAMMA_ITERATIONS):
             g = self.gas.gamma(T)
             mdot = dual_pressure_mass_flow(p, rate, self.tank_volume, self.area, self.discharge_coefficient, g)
-            T = _clamped(self.tank_volume * rate / (g * self.gas.gas_constant * mdot))
+            T = _clamped(self.tank_volume * rate / (g * self.gas.gas_constant * mdot), self.name,
+                         k == GAMMA_ITERATIONS - 1)
         return mdot, T
 
     def mass_flow(self, t: float) -> float:

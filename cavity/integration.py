@@ -13,6 +13,7 @@ Two paths run the same algorithm. A system that can lower itself to arrays (``co
 from __future__ import annotations
 
 import math
+import time as _time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -20,7 +21,7 @@ from scipy.integrate import solve_ivp
 
 from .progress import ProgressBar
 
-__all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS"]
+__all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS", "stiffness_advice"]
 
 #: Events allowed at one instant before the run is declared stuck (chattering switches).
 MAX_EVENTS_AT_ONE_TIME = 20
@@ -31,7 +32,27 @@ METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
 
 
 class SolverError(RuntimeError):
-    """The integrator failed; the message names the time and the state where it stopped."""
+    """The integrator failed; the message names the time and the state where it stopped.
+
+    ``trajectory`` holds what was integrated before (a :class:`Trajectory`, or None when nothing was)."""
+
+    trajectory = None
+
+
+EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
+
+
+def stiffness_advice(method: str) -> str:
+    """The advice appended to a step-budget or step-size failure of an explicit method.
+
+    >>> stiffness_advice("DOP853")
+    "; the scene looks stiff for the explicit method 'DOP853': set [solver] method = 'Radau' (or 'LSODA')"
+    >>> stiffness_advice("Radau")
+    ''
+    """
+    if method not in EXPLICIT_METHODS:
+        return ""
+    return f"; the scene looks stiff for the explicit method {method!r}: set [solver] method = 'Radau' (or 'LSODA')"
 
 
 @dataclass(frozen=True)
@@ -50,6 +71,9 @@ class SolverOptions:
         Largest step [s].
     max_steps : int
         Steps after which the run is declared stuck (no hang on a stiff or chattering scene).
+    max_wall : float
+        Wall time [s] after which the run is stopped (Python path: checked every step; the compiled path is
+        bounded by ``max_steps`` and checked when it returns).
     compiled : bool or None
         Run the compiled DOP853 path (:mod:`cavity.rk_compiled`; the system lowers itself with
         ``compiled_solver()``): None (default) when the method is DOP853 and the system can be lowered, else the
@@ -61,6 +85,7 @@ class SolverOptions:
     atol: object = 1e-12
     max_step: float = math.inf
     max_steps: int = 2_000_000
+    max_wall: float = math.inf
     compiled: bool | None = None
 
     def __post_init__(self):
@@ -68,6 +93,8 @@ class SolverOptions:
             raise ValueError(f"solver method must be one of {', '.join(METHODS)}; got {self.method!r}")
         if not (0.0 < self.rtol < 1.0):
             raise ValueError(f"rtol must be in (0, 1), got {self.rtol!r}")
+        if not self.max_wall > 0:
+            raise ValueError(f"max_wall must be > 0 [s], got {self.max_wall!r}")
 
 
 @dataclass
@@ -81,6 +108,7 @@ class Trajectory:
     stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
                                                  "restarts": 0, "events": 0, "path": "python"})
     last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
+    deadline: float = math.inf  # time.perf_counter() after which the run stops (SolverOptions.max_wall)
     stalls: int = 0  # events in a row at the same time
     path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
     #: compiled path: (step records, segment table) as returned by the compiled solver, read back in one call by
@@ -125,6 +153,7 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
         scipy event functions (``terminal`` set, ``direction`` as needed) valid for the current discrete state,
         ``on_event(t, y, index) -> (n,) float`` which applies the switch of event ``index`` (and may change what
         ``events()`` returns), and ``describe(t, y) -> str`` for error messages. Optional:
+        ``arm(t0, y0) -> labels`` (switches already past their threshold at the start, applied then and logged),
         ``begin_segment(t0, t1, y0)``, ``snapshot()``/``restore(mode)`` (its discrete state per segment) and
         ``compiled_solver()`` (None, or an object whose ``run`` integrates the whole span compiled: see
         :func:`_integrate_compiled`).
@@ -135,10 +164,22 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
         Show a progress bar on stderr when the run takes more than a second.
     """
     stops = sorted({float(b) for b in system.breakpoints if t0 < b < t1} | {t1})
+    armed = [(float(t0), label) for label in system.arm(t0, np.asarray(y0, dtype=float))] \
+        if hasattr(system, "arm") else []
     fast = _compiled_system(system, options)
+    start = _time.perf_counter()
     if fast is not None:
-        return _integrate_compiled(system, fast, y0, t0, stops, options)
-    traj = Trajectory()
+        traj = _integrate_compiled(system, fast, y0, t0, stops, options)
+        traj.events[:0] = armed
+        traj.stats["events"] += len(armed)
+        if _time.perf_counter() - start > options.max_wall:
+            exc = SolverError(f"the run took {_time.perf_counter() - start:.3g} s, more than max_wall = "
+                              f"{options.max_wall:g} s")
+            exc.trajectory = traj
+            raise exc
+        return traj
+    traj = Trajectory(deadline=start + options.max_wall, events=armed)
+    traj.stats["events"] = len(armed)
     bar = ProgressBar(t1 - t0, desc="ventsim", unit="s", enabled=progress)
     t, y = float(t0), np.asarray(y0, dtype=float)
     try:
@@ -147,6 +188,9 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
                 t, y = _advance(system, t, y, stop, options, traj)
                 bar.update_to(t - t0)
         bar.close(complete=True)
+    except SolverError as exc:
+        exc.trajectory = traj if traj.segments else None
+        raise
     finally:
         bar.close()
     return traj
@@ -171,20 +215,36 @@ _RTOL_FLOOR = 100 * float(np.finfo(float).eps)  # scipy's smallest rtol
 
 def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
     """Run the compiled DOP853 path (the system's ``compiled_solver().run``) and wrap its records."""
-    from .rk_compiled import DenseSteps
-
     rtol = max(options.rtol, _RTOL_FLOOR)
-    status, t, y, recs, segs, evs, st = fast.run(y0, t0, stops, rtol, options.atol, options.max_step,
-                                                 options.max_steps, SWITCH_NEAR_ZERO_PER_RTOL * rtol)
+    try:
+        status, t, y, recs, segs, evs, st = fast.run(y0, t0, stops, rtol, options.atol, options.max_step,
+                                                     options.max_steps, SWITCH_NEAR_ZERO_PER_RTOL * rtol,
+                                                     _time.perf_counter() + options.max_wall)
+    except (ArithmeticError, ValueError) as exc:  # numba raises as Python would (a step size divided to zero)
+        raise SolverError(f"the compiled DOP853 failed ({type(exc).__name__}: {exc}) from t = {t0:.9g} s; "
+                          f"{system.describe(t0, np.asarray(y0, dtype=float))}; inputs this extreme (a rate "
+                          f"or an area many orders too large?) stop it") from None
     if status:  # the Python path's messages
         state = system.describe(t, y)
-        raise SolverError({1: f"more than {options.max_steps} steps before t = {t:.9g} s; {state}",
+        stiff = stiffness_advice(options.method)
+        exc = SolverError({1: f"more than {options.max_steps} steps before t = {t:.9g} s; {state}{stiff}",
                            2: f"DOP853 stopped at t = {t:.9g} s: Required step size is less than spacing between "
-                              f"numbers.; {state}",
+                              f"numbers.; {state}{stiff}",
                            3: f"the right-hand side failed near t = {t:.9g} s (no temperature found for a "
                               f"cavity's internal energy); {state}",
                            4: f"non-finite state at t = {t:.9g} s; {state}",
-                           5: f"switches keep firing at t = {t:.9g} s without progress; {state}"}[status])
+                           5: f"switches keep firing at t = {t:.9g} s without progress; {state}",
+                           6: f"more than max_wall = {options.max_wall:g} s of wall time before t = {t:.9g} s; "
+                              f"{state}"}[status])
+        exc.trajectory = _compiled_trajectory(system, fast, t0, recs, segs, evs, st) if len(segs) else None
+        raise exc
+    return _compiled_trajectory(system, fast, t0, recs, segs, evs, st)
+
+
+def _compiled_trajectory(system, fast, t0, recs, segs, evs, st) -> Trajectory:
+    """The Trajectory of the compiled solver's records and segment table."""
+    from .rk_compiled import DenseSteps
+
     traj = Trajectory(path="compiled", compiled_records=(recs, segs))
     for first, end, t_min, t_max, code in segs.tolist():
         traj.segments.append(DenseSteps(recs[int(first):int(end)], t_min, t_max))
@@ -242,15 +302,19 @@ def _watched(g, direction):
     return event
 
 
-def _step_budget(system, remaining: int, total: int):
+def _step_budget(system, remaining: int, options, deadline: float):
     """A never-firing event: scipy evaluates it once per accepted step, so it counts the steps of one solve and
-    stops a segment that exceeds the run's step budget (solve_ivp has no step limit of its own)."""
+    stops a segment that exceeds the run's step budget or its wall-time ``deadline`` (solve_ivp has neither)."""
     count = [0]
 
     def budget(t, y):
         count[0] += 1
         if count[0] > remaining + 1:  # the first call is at the segment's start
-            raise SolverError(f"more than {total} steps before t = {t:.9g} s; {system.describe(t, y)}")
+            raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}"
+                              f"{stiffness_advice(options.method)}")
+        if _time.perf_counter() > deadline:
+            raise SolverError(f"more than max_wall = {options.max_wall:g} s of wall time before t = {t:.9g} s; "
+                              f"{system.describe(t, y)}")
         return 1.0
 
     budget.terminal, budget.direction, budget.label = False, 0.0, "step budget"
@@ -291,7 +355,7 @@ def _advance(system, t, y, stop, options, traj):
     remaining = options.max_steps - traj.stats["steps"]
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
-    events = events + [_step_budget(system, remaining, options.max_steps)]
+    events = events + [_step_budget(system, remaining, options, traj.deadline)]
     try:
         sol = solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
                         max_step=options.max_step, dense_output=True, events=events)
@@ -299,7 +363,7 @@ def _advance(system, t, y, stop, options, traj):
         raise SolverError(f"the right-hand side failed near t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None
     if sol.status == -1:
         raise SolverError(f"{options.method} stopped at t = {sol.t[-1]:.9g} s: {sol.message}; "
-                          f"{system.describe(sol.t[-1], sol.y[:, -1])}")
+                          f"{system.describe(sol.t[-1], sol.y[:, -1])}{stiffness_advice(options.method)}")
     if not np.all(np.isfinite(sol.y[:, -1])):
         raise SolverError(f"non-finite state at t = {sol.t[-1]:.9g} s; {system.describe(sol.t[-1], sol.y[:, -1])}")
     st = traj.stats

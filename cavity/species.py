@@ -91,6 +91,9 @@ class Species:
         With ``breaks``: len(breaks) + 1 coefficient 6-tuples, one per range; ``cp_coefficients`` is then piece 0.
     source : str
         Where the data came from (a scene, a built-in, a CoolProp fit and its error).
+    valid_range : (float, float)
+        Temperatures [K] between which the data hold (a CoolProp fit's range; (0, inf): not known). A run that
+        leaves it gets a warning (``cases.species_range``).
 
     Examples
     --------
@@ -105,6 +108,7 @@ class Species:
     source: str = "user"
     breaks: tuple[float, ...] = ()
     pieces: tuple[tuple[float, ...], ...] = ()
+    valid_range: tuple[float, float] = (0.0, math.inf)
 
     def __post_init__(self):
         pieces = self.pieces or (self.cp_coefficients,)
@@ -150,6 +154,9 @@ def _padded(name: str, coefficients) -> tuple[float, ...]:
     return coeffs + (0.0,) * (N_COEFFICIENTS - len(coeffs))
 
 
+#: Temperatures [K] a CoolProp species is fitted on (and valid in) by default.
+COOLPROP_RANGE = (100.0, 3000.0)
+
 #: Species names resolved through CoolProp when a scene names them without data.
 BUILTIN_COOLPROP_NAMES = {"N2": "Nitrogen", "O2": "Oxygen", "CO2": "CarbonDioxide", "He": "Helium", "Ar": "Argon",
                           "H2O": "Water", "H2": "Hydrogen", "Air": "Air"}
@@ -185,10 +192,13 @@ def fit_species_from_coolprop(name: str, *, label: str | None = None, t_range: t
                               width: float = 100.0) -> Species:
     """A species whose cp is a piecewise cubic least-squares fit of CoolProp's ideal-gas cp0(T), made once at load.
 
-    The range ``t_range`` (default: the fluid's valid range clipped to [200 K, 2000 K]) is cut into pieces of
-    about ``width`` kelvin, each fitted by a cubic in T on 12 samples; beyond the range cp is held at its end
-    values. The maximum relative error of the fit (on points between the samples) is recorded in ``source``:
-    typically below 1e-6. CoolProp is never called while integrating.
+    The range ``t_range`` (default: :data:`COOLPROP_RANGE`, 100 K to 3000 K, or from the fluid's lowest data
+    temperature if cp0 cannot be evaluated at 100 K) is cut into pieces of about ``width`` kelvin, each fitted
+    by a cubic in T on 12 samples; beyond the range cp is held at its end values and ``valid_range`` says so
+    (a run that goes there is warned). The ideal-gas cp0 is CoolProp's analytic ideal-gas part, defined below the
+    fluid's triple point too. The maximum relative error of the fit (on points between the samples) is recorded
+    in ``source``: below 1e-6 for N2, O2, CO2, H2O, Ar, He, H2 and Air (tests/test_gas.py). CoolProp is never
+    called while integrating.
 
     Parameters
     ----------
@@ -207,19 +217,39 @@ def fit_species_from_coolprop(name: str, *, label: str | None = None, t_range: t
         state.update(CP.DmolarT_INPUTS, 1e-6, T)
         return state.cp0molar()
 
-    lo, hi = t_range or (max(200.0, state.Tmin() * 1.05), min(2000.0, state.Tmax()))
-    edges = np.linspace(lo, hi, max(1, int(round((hi - lo) / width))) + 1)
-    pieces, err = [(cp0(lo),)], 0.0
-    for t0, t1 in zip(edges[:-1], edges[1:]):
-        T = np.linspace(t0, t1, 12)
-        coef = np.polynomial.polynomial.polyfit(T, [cp0(t) for t in T], 3)
-        pieces.append(tuple(coef))
-        mid = 0.5 * (T[:-1] + T[1:])
-        err = max(err, max(abs(np.polynomial.polynomial.polyval(t, coef) / cp0(t) - 1.0) for t in mid))
+    lo, hi = t_range or COOLPROP_RANGE
+    try:
+        cp0(lo)
+    except ValueError:
+        lo = state.Tmin()
+    pieces, edges, err = [(cp0(lo),)], [float(lo)], 0.0
+    for t0, t1 in zip(np.linspace(lo, hi, max(1, int(round((hi - lo) / width))) + 1)[:-1],
+                      np.linspace(lo, hi, max(1, int(round((hi - lo) / width))) + 1)[1:]):
+        for coef, e, t_end in _cubic_pieces(cp0, float(t0), float(t1)):
+            pieces.append(coef)
+            edges.append(t_end)
+            err = max(err, e)
     pieces.append((cp0(hi),))
     source = f"CoolProp {fluid} cp0, cubic pieces on [{lo:.0f}, {hi:.0f}] K, max rel error {err:.1e}"
     return Species(label or name, state.molar_mass(), pieces[0], source=source,
-                   breaks=tuple(float(e) for e in edges), pieces=tuple(pieces))
+                   breaks=tuple(edges), pieces=tuple(pieces), valid_range=(float(lo), float(hi)))
+
+
+#: Target relative error of a CoolProp fit piece; a piece above it is split in two (down to MIN_PIECE kelvin).
+FIT_RTOL, MIN_PIECE = 1e-7, 2.0
+
+
+def _cubic_pieces(cp0, t0: float, t1: float) -> list:
+    """[(coefficients, max relative error, piece end)] of cubic least-squares fits of ``cp0`` over [t0, t1] on 12
+    samples each, halving a piece whose error (between the samples) exceeds :data:`FIT_RTOL`."""
+    T = np.linspace(t0, t1, 12)
+    coef = np.polynomial.polynomial.polyfit(T, [cp0(t) for t in T], 3)
+    mid = 0.5 * (T[:-1] + T[1:])
+    err = max(abs(np.polynomial.polynomial.polyval(t, coef) / cp0(t) - 1.0) for t in mid)
+    if err <= FIT_RTOL or t1 - t0 <= MIN_PIECE:
+        return [(tuple(coef), err, t1)]
+    half = 0.5 * (t0 + t1)
+    return _cubic_pieces(cp0, t0, half) + _cubic_pieces(cp0, half, t1)
 
 
 def builtin_species(name: str) -> Species:

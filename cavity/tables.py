@@ -62,8 +62,8 @@ class Table:
         steps = np.flatnonzero(np.diff(x) <= 0.0)
         if steps.size:
             i = steps[0] + 1
-            raise TableError(f"{self.name}: rows {i} and {i + 1} are not in strictly increasing order "
-                             f"({x[i - 1]!r} then {x[i]!r})")
+            what = "repeat the abscissa" if x[i] == x[i - 1] else "are not in strictly increasing order"
+            raise TableError(f"{self.name}: rows {i} and {i + 1} {what} ({float(x[i - 1])!r} then {float(x[i])!r})")
         if self.extrapolation not in ("constant", "linear"):
             raise TableError(f"{self.name}: extrapolation must be 'constant' or 'linear', got {self.extrapolation!r}")
         object.__setattr__(self, "x", tuple(float(v) for v in x))

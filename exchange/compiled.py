@@ -45,7 +45,8 @@ class CompiledNetwork:
     _modes: dict = field(default_factory=dict, repr=False)
     _run_modes: list = field(default_factory=list, repr=False)
 
-    def run(self, y0, t0: float, stops, rtol: float, atol, max_step: float, max_steps: int, near: float):
+    def run(self, y0, t0: float, stops, rtol: float, atol, max_step: float, max_steps: int, near: float,
+            deadline: float = math.inf):
         """One call of :func:`exchange.compiled_solver.solve` from the network's current discrete state; returns
         its tuple (see there) with the segment table cut to 5 columns, the last an index for
         :meth:`segment_mode`."""
@@ -64,7 +65,7 @@ class CompiledNetwork:
         if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
         out = solve(model, self.kinds, self.exchanges, y0, float(t0), np.array(stops, dtype=float), float(rtol),
-                    atol, float(max_step), int(max_steps), float(near))
+                    atol, float(max_step), int(max_steps), float(near), float(deadline))
         segs = out[4]
         self._run_modes = [self._mode(row) for row in segs.tolist()]
         table = segs[:, :5].copy()
@@ -239,9 +240,10 @@ def _exchanges(net, tables):
 
 
 def _switches(net):
-    """Switch kinds (0 choke, 1 one-way reversal, 2/3 equalise/release, 4 pop, 5 pop-drop, 6 pop-hold, 8/9 the
-    dynamic body's displacement reaching the crossing above/below its area interval, 10 its turning point),
-    their exchanges and labels, in the order of :meth:`Network.events` (each watched only in its discrete state)."""
+    """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 4 pop, 5 pop-drop,
+    6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area interval, 10 its
+    turning point), their exchanges and labels, in the order of :meth:`Network.events` (each watched only in its
+    discrete state)."""
     kinds, js, labels = [], [], []
 
     def add(kind, j, what):
@@ -252,6 +254,8 @@ def _switches(net):
     for j, ex in enumerate(net.exchanges):
         if ex.law.pneumatic:
             add(0, j, "choke")
+        if getattr(ex.law, "orifice_join", False):
+            add(7, j, "join")
         if ex.downstream is None and not ex.two_way:
             add(1, j, "reversal")
         elif net.can_equalise(j):

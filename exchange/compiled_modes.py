@@ -32,6 +32,8 @@ def watched(M, kind, j):
         return True
     if kind == 2 or kind == 3:
         return eq[j] == (1 if kind == 3 else 0)
+    if kind == 7:
+        return True
     if kind >= 4:
         return op[j] == 0 and (math.isnan(hold[j]) if kind == 4 else not math.isnan(hold[j]))
     return True
@@ -51,7 +53,7 @@ def on_event(M, kind, j, t):
         M[22][j] = t
     elif kind == 5:
         M[22][j] = math.nan
-    elif kind >= 4:
+    elif kind == 4 or kind == 6:  # (kind 7, the orifice join, changes nothing)
         M[21][j] = 1
 
 

@@ -35,7 +35,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .compiled_laws import critical_pressure_ratio, fabric_leakage_mass_flow, graefe_mass_flow, orifice_mass_flow
+from .compiled_laws import (LINEAR_BELOW, critical_pressure_ratio, fabric_leakage_mass_flow, graefe_mass_flow,
+                            orifice_mass_flow)
 from .network import EQUALISED_BELOW, RELEASED_ABOVE
 
 R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
@@ -375,12 +376,14 @@ def body_rhs(y, dy, ci, tx, ty, ti, st, amb, bd):
 def switch_value(kind, j, ei, ef, st, amb):
     """Switch function of exchange j on the states in ``st`` (:meth:`Network._choke_switch`, kind 0,
     :meth:`Network._dp_switch`, kind 1, the equalise and release switches, kinds 2 and 3,
-    :meth:`Network._pop_switch`, kinds 4 (pop) and 5 (pop-drop)) [-]. The pop-hold switch (kind 6) depends on
-    time only: :func:`exchange.compiled_solver.switches`."""
+    :meth:`Network._pop_switch`, kinds 4 (pop) and 5 (pop-drop), the orifice join, kind 7) [-]. The pop-hold
+    switch (kind 6) depends on time only: :func:`exchange.compiled_solver.switches`."""
     a, b = ei[j, 0], ei[j, 1]
     pa, pb = st[a, P], side(st, amb, b, P)
     if kind == 1:
         return (pa - pb) / max(pa, pb)
+    if kind == 7:
+        return abs(pa - pb) / max(pa, pb) / LINEAR_BELOW - 1.0
     if kind == 2 or kind == 3:
         return abs(pa - pb) / max(pa, pb) / (EQUALISED_BELOW if kind == 2 else RELEASED_ABOVE) - 1.0
     if kind == 4 or kind == 5:

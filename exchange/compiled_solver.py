@@ -13,9 +13,10 @@ that keep firing at one instant stopped.
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
-from numba import njit
+from numba import njit, objmode
 
 from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_FACTOR, N_STAGES, RECORD, SAFETY,
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
@@ -23,7 +24,8 @@ from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_F
 from .compiled_modes import body_switch, on_event, record_segment, rederive_intervals, watched
 from .compiled_rhs import body_rhs, network_rhs, states, switch_value
 
-OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED = 0, 1, 2, 3, 4, 5
+OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED, WALL_BUDGET = 0, 1, 2, 3, 4, 5, 6
+WALL_CHECK_EVERY = 1024  # steps between two looks at the clock (an object-mode call of ~1 µs)
 MAX_EVENTS_AT_ONE_TIME = 20  # cavity.integration.MAX_EVENTS_AT_ONE_TIME
 NO_BUDGET = 1 << 62  # the tail to an event is not budgeted (as in cavity.integration)
 EPS4 = 4.0 * np.finfo(np.float64).eps
@@ -56,6 +58,14 @@ def switches(M, kinds, js, t, y, seg_end, vals):
             vals[q] = (t - (M[22][j] + h)) / h if h > 0.0 and not math.isnan(M[22][j]) else 1.0
         else:
             vals[q] = switch_value(kinds[q], j, ei, ef, st, amb)
+
+
+@njit(cache=True)
+def clock():
+    """time.perf_counter() [s], from compiled code."""
+    with objmode(now="float64"):
+        now = time.perf_counter()
+    return now
 
 
 @njit(cache=True)
@@ -206,7 +216,8 @@ def first_crossing(M, wk, wj, wd, g, gnew, rec, n, t, t_new, seg_end):
 
 
 @njit(cache=True)
-def piece(M, wk, wj, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_steps, stats, buf, cnt):
+def piece(M, wk, wj, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_steps, stats, buf, cnt,
+          deadline=math.inf):
     """DOP853 from (t0, y0) to t_bound watching switches (wk, wj) for crossings in directions wd.
 
     Returns (status, t_end, y_end, watched index that fired or −1, t_k, y_k, buf): at an event, t_end is its time,
@@ -245,6 +256,8 @@ def piece(M, wk, wj, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_ste
         stats[1] += 1
         if stats[1] > max_steps:
             return STEP_BUDGET, t_new, y_new, -1, t, y, buf
+        if stats[1] % WALL_CHECK_EVERY == 0 and deadline < math.inf and clock() > deadline:
+            return WALL_BUDGET, t_new, y_new, -1, t, y, buf
         for i in range(n):
             if not math.isfinite(y_new[i]):
                 return NOT_FINITE, t_new, y_new, -1, t, y, buf
@@ -318,8 +331,9 @@ def begin_segment(M, kinds, js, t, y, seg_end):
 
 
 @njit(cache=True)
-def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near):
-    """Integrate from t0 through every stop (the last is the end).
+def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near, deadline=math.inf):
+    """Integrate from t0 through every stop (the last is the end), stopping with WALL_BUDGET once
+    ``time.perf_counter()`` passes ``deadline`` (looked at every WALL_CHECK_EVERY steps).
 
     Returns (status, t, y, step records, segments (k, 5 + 2 ne): first record, end record, t_min, t_max, mode
     code, popped and hold start per exchange (:func:`record_segment`), events (m, 3): time, switch index,
@@ -341,7 +355,7 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near):
             wq, wd = directions(M, kinds, js, t, y, stop, last_q, last_t, last_dir, near)
             first = cnt[0]
             status, t_end, y_end, qw, t_k, y_k, buf = piece(M, kinds[wq], js[wq], wd, t, y, stop, stop, rtol, atol,
-                                                            max_step, max_steps, stats, buf, cnt)
+                                                            max_step, max_steps, stats, buf, cnt, deadline)
             stats[2] += 1
             if status != OK:
                 return status, t_end, y_end, buf[:cnt[0]], segs[:nseg], evs[:nev], stats

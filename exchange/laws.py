@@ -36,6 +36,7 @@ class OrificeLaw:
     discharge_coefficient: object = 1.0
     pneumatic = True
     prescribed = False
+    orifice_join = True  # the law changes form at Δp/p = LINEAR_BELOW: a switch there (Network.events)
 
     def mass_flow(self, up, p_down, area, t):
         return orifice_mass_flow(up.p, up.T, p_down, up.R, up.gamma, area, _cd(self.discharge_coefficient, up, t))
@@ -49,6 +50,7 @@ class FabricLeakageLaw:
     open_fraction: float = 1.0
     pneumatic = True
     prescribed = False
+    orifice_join = True
 
     def mass_flow(self, up, p_down, area, t):
         return fabric_leakage_mass_flow(up.p, up.T, p_down, up.R, up.gamma, area,

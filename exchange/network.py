@@ -19,6 +19,7 @@ import numpy as np
 
 from cavity.cavity import CavityState
 from .activation import activated_area
+from .orifice import LINEAR_BELOW
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
@@ -68,6 +69,20 @@ def gas_point(state) -> GasPoint:
         return GasPoint(state.pressure, T, 0.0, 1.0, 1.4, 0.0, state.masses)
     return GasPoint(state.pressure, T, state.density, mix.gas_constant, mix.gamma(T), state.specific_enthalpy,
                     state.masses / mix.mass)
+
+
+def arm_pop_vents(net, t: float, y) -> list:
+    """:meth:`Network.arm`: at the start of a run, every pop vent already above its pop pressure starts its hold (or opens) now,
+    as if its pressure had just crossed it; returns the labels of these pops (for the event log)."""
+    labels = []
+    for j, ex in enumerate(net.exchanges):
+        act = ex.activation
+        if act is None or act.pop_pressure is None or net.popped[j] or net.holding_since[j] is not None:
+            continue
+        if net._pop_switch(t, y, j) > 0.0:
+            net.on_event(t, y, f"{ex.name}:pop")
+            labels.append(f"{ex.name}:pop")
+    return labels
 
 
 @dataclass
@@ -295,13 +310,18 @@ class Network:
         sliding state) but an equalised mode: "equalise" fires when |Δp|/p falls to :data:`EQUALISED_BELOW` and
         holds it closed, "release" when it rises to :data:`RELEASED_ABOVE` and opens it again; and, for a vent
         with a pop pressure not yet open, the pop crossing, or while holding, the drop below it and the end of
-        the hold time.
+        the hold time. The orifice law (and fabric leakage, which uses it) changes form at |Δp|/p =
+        :data:`~exchange.orifice.LINEAR_BELOW` (a C¹ join): "join" stops the integrator there too, so that no
+        step and no dense output straddles it.
         """
         out = []
         for j, ex in enumerate(self.exchanges):
             if not ex.law.prescribed:
                 if ex.law.pneumatic:
                     out.append(_labelled(lambda t, y, j=j: self._choke_switch(t, y, j), f"{ex.name}:choke"))
+                if getattr(ex.law, "orifice_join", False):
+                    out.append(_labelled(lambda t, y, j=j: self._dp_relative(t, y, j) / LINEAR_BELOW - 1.0,
+                                         f"{ex.name}:join"))
                 if ex.downstream is None and not ex.two_way:  # one-way: the flow stops at Δp = 0 (a kink)
                     out.append(_labelled(lambda t, y, j=j: self._dp_switch(t, y, j), f"{ex.name}:reversal"))
                 elif self.can_equalise(j):  # two-way: held closed once equalised, opened when driven apart
@@ -368,6 +388,8 @@ class Network:
             self.popped[j] = True
             self.area_at_activation[j] = self.base_area(j, t)
         return y
+
+    arm = arm_pop_vents  # see there
 
     def describe(self, t: float, y) -> str:
         """A one-line account of the cavities' state, for error messages."""

@@ -85,7 +85,10 @@ def test_compiled_path_matches_the_python_path_on_the_library(name):
     model = model_of(name)
     fast_traj, slow_traj = both_paths(model)
     assert (fast_traj.path, slow_traj.path) == ("compiled", "python")
-    assert [label for _, label in fast_traj.events] == [label for _, label in slow_traj.events]
+    # twin vents (airbag_vented) reach a switch at one instant: which twin's switch fires first is decided by
+    # round-off, so compare the kinds of switch in time order
+    assert [label.split(":")[1] for _, label in fast_traj.events] == \
+        [label.split(":")[1] for _, label in slow_traj.events]
     np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=1e-9)
     assert abs(fast_traj.stats["steps"] - slow_traj.stats["steps"]) <= 2
     times = np.asarray(model.output_times)
@@ -326,7 +329,10 @@ def assert_same_on_both_paths(model, events_expected=None):
         assert [h is None for h in fast_mode[1]] == [h is None for h in slow_mode[1]]
         np.testing.assert_allclose([h for h in fast_mode[1] if h is not None],
                                    [h for h in slow_mode[1] if h is not None], rtol=1e-12)
-    times = np.union1d(np.asarray(model.output_times), [t for t, _ in slow_traj.events])
+    # at an event time the two paths agree on to the last bit, both read the same side of the switch; where
+    # round-off parts them (by ~1e-16 s) a row at one path's event time would read the two sides of it
+    same = [t for (t, _), (tf, _) in zip(slow_traj.events, fast_traj.events) if t == tf]
+    times = np.union1d(np.asarray(model.output_times), same)
     fast, slow = compiled_readback(model, fast_traj)(times), history_rows(model, slow_traj, times)
     for k, name in enumerate(history_columns(model)):
         scale = np.max(np.abs(slow[:, k]))
@@ -362,8 +368,9 @@ def test_the_pop_vent_mode_is_left_on_the_network(tmp_path):
     model = build_model(scene_from_dict(fill_with_pop(5.0e4, 0.004), tmp_path / "scene.toml"))
     traj = default_run(model)
     net = model.network
-    assert net.popped == [True] and net.holding_since == [traj.events[0][0]] and net.area_at_activation == [5e-4]
-    t_pop, t_open = traj.events[0][0], traj.events[1][0]
+    pops = [t for t, label in traj.events if ":pop" in label]  # (the orifice's join switch fires too)
+    assert net.popped == [True] and net.holding_since == [pops[0]] and net.area_at_activation == [5e-4]
+    t_pop, t_open = pops[0], pops[1]
     assert traj.mode_at(0.5 * t_pop)[:2] == ((False,), (None,))
     assert traj.mode_at(0.5 * (t_pop + t_open))[:3] == ((False,), (t_pop,), (None,))
     assert traj.mode_at(t_open)[:3] == ((True,), (t_pop,), (5e-4,))
