@@ -172,20 +172,35 @@ def species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple
     from . import species_fits
 
     fluid = BUILTIN_COOLPROP_NAMES.get(name, name)
-    key = species_fits.fit_key(fluid, t_range, width)
+    key = coolprop_fit_key(fluid, t_range, width)
     record = species_fits.lookup(key)
     if record is None:
         species = fit_species_from_coolprop(name, label=label, t_range=t_range, width=width)
         species_fits.store(key, species_record(species))
         return species
     return Species(label or name, record["molar_mass"], tuple(record["pieces"][0]), source=record["source"],
-                   breaks=tuple(record["breaks"]), pieces=tuple(tuple(p) for p in record["pieces"]))
+                   breaks=tuple(record["breaks"]), pieces=tuple(tuple(p) for p in record["pieces"]),
+                   valid_range=tuple(record["valid_range"]))
+
+
+def coolprop_fit_key(fluid: str, t_range, width: float) -> str:
+    """The fit cache's key of a fit: fluid, range (the default made explicit), piece width and target error, so
+    that a fit made by other rules is never taken for this one.
+
+    >>> coolprop_fit_key("Nitrogen", None, 100.0)
+    'Nitrogen|100.0-3000.0|100.0|rtol 1e-07'
+    """
+    from .species_fits import fit_key
+
+    return f"{fit_key(fluid, t_range or COOLPROP_RANGE, width)}|rtol {FIT_RTOL!r}"
 
 
 def species_record(species: Species) -> dict:
-    """The JSON-able fit of a species (molar mass, breaks, pieces, source) as the fit cache stores it."""
+    """The JSON-able fit of a species (molar mass, breaks, pieces, source, valid range) as the fit cache stores
+    it."""
     return {"molar_mass": species.molar_mass, "breaks": list(species.breaks),
-            "pieces": [list(p) for p in species.pieces], "source": species.source}
+            "pieces": [list(p) for p in species.pieces], "source": species.source,
+            "valid_range": list(species.valid_range)}
 
 
 def fit_species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple[float, float] | None = None,
