@@ -209,7 +209,7 @@ def run(model: Model, *, progress: bool = False, max_wall: float | None = None) 
             raise RunError(model.scene.path if model.scene._path else "<scene built in Python>",
                            f"the run stopped: {exc}", partial) from None
     messages = unique_messages(model.warnings + [w for w in caught if issubclass(w.category, VentsimWarning)]
-                               + species_range_warnings(model, results.history))
+                               + species_range_warnings(model, results.history, results.columns))
     if messages:
         results.summary["warnings"] = messages
     return results

@@ -16,9 +16,9 @@ def _outside(species, names, what, t_min, t_max) -> list:
     return out
 
 
-def species_range_warnings(model, history: np.ndarray) -> list:
-    """Messages for every species whose ``valid_range`` the run left: a cavity temperature in ``history`` (the
-    columns of ``cases.runner.history_columns``) with that species in the cavity or its inflators, or an
+def species_range_warnings(model, history: np.ndarray, columns: list) -> list:
+    """Messages for every species whose ``valid_range`` the run left: a cavity temperature in ``history`` (named
+    by ``columns``, those of ``cases.runner.history_columns``) with that species in the cavity or its inflators, or an
     inflator's gas temperature table."""
     species = model.network.gas.species
     if history.size == 0 or all(s.valid_range == (0.0, np.inf) for s in species):
@@ -29,7 +29,10 @@ def species_range_warnings(model, history: np.ndarray) -> list:
             continue
         present = {s.name for k, s in enumerate(species) if cav.initial_masses[k] > 0
                    or any(inf.mass_fractions[k] > 0 for inf in cav.inflators)}
-        T = history[:, 2 + 4 * i]
+        k = columns.index(f"{cav.name}.temperature [K]") if f"{cav.name}.temperature [K]" in columns else None
+        if k is None:
+            continue
+        T = history[:, k]
         out += _outside(species, present, f"cavity {cav.name!r}", float(np.min(T)), float(np.max(T)))
         for inf in cav.inflators:
             table = getattr(inf, "temperature_table", None)

@@ -233,3 +233,11 @@ def test_max_wall_stops_the_compiled_path_inside_its_run(tmp_path):
         run(m, max_wall=0.2)
     t_stop = float(info.value.args[0].split("before t = ")[1].split(" s")[0])
     assert 0.0 < t_stop < 0.05  # stopped inside the run, not after it
+
+
+def test_species_range_reads_the_temperature_column_by_name(tmp_path):
+    data = tank()
+    data["species"] = []
+    data["cavity"][0]["gas"] = {"N2": 1.0}
+    r = run(model(tmp_path, data))  # 300 K to a few K below: inside 100-3000 K
+    assert "warnings" not in r.summary
