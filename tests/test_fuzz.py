@@ -16,6 +16,6 @@ def test_mutated_library_scenes_end_in_a_clean_error_or_a_finite_run(tmp_path):
     print(f"seed {seed}, {count} mutations: {dict(c)}; slowest {res['max wall [s]']:.1f} s")
     assert sum(c.values()) == count
     assert c["clean error"] > count // 3 and c["legal run"] > count // 10  # the mutator reaches both outcomes
-    bad = [f"{name}: {what}: {out['kind']}: {out['detail'].strip().splitlines()[-1][:200]}"
+    bad = [f"{name}: {what}: {out['kind']}: {(out['detail'].strip().splitlines() or [''])[-1][:200]}"
            for name, what, out in res["bad"]]
     assert not bad, "\n".join(bad)

@@ -35,7 +35,7 @@ def test_one_way_blowdown_stops_exactly_at_ambient(tmp_path):
     check_sane(r, max_steps=200)
     check_blowdown_shape(r)
     labels = [label for _, label in r.summary["solver"]["event log"]]
-    assert labels == ["vent:choke", "vent:reversal"]
+    assert labels == ["vent:choke", "vent:join", "vent:reversal"]  # join: the orifice law's form changes there
 
 
 def test_two_way_blowdown_settles_at_ambient_without_chattering(tmp_path):
@@ -70,7 +70,7 @@ def test_vacuum_start_fills_monotonically_towards_ambient(tmp_path, p0):
     check_vacuum_shape(r, p0)
     t, p, T, m = series(r)
     assert p[-1] > 0.85 * P_AMB  # choked inflow, then subsonic
-    assert [label for _, label in r.summary["solver"]["event log"]] == ["vent:choke"]
+    assert [label for _, label in r.summary["solver"]["event log"] if not label.endswith(":join")] == ["vent:choke"]
 
 
 def test_vacuum_start_settles_at_ambient_without_chattering(tmp_path):
