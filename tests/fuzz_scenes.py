@@ -513,16 +513,23 @@ def settings(default_seed: int = 1, default_count: int = 300) -> tuple:
 
 
 def main() -> int:
+    """Run a campaign (VENTSIM_FUZZ_SEED, VENTSIM_FUZZ_COUNT, and VENTSIM_FUZZ_WALL / VENTSIM_FUZZ_KILL [s]);
+    print a line per mutation, the figures, and last a JSON line of them (for tests/test_fuzz.py)."""
     import tempfile
 
     seed, count = settings(7, 700)
+    wall = float(os.environ.get("VENTSIM_FUZZ_WALL", WALL_BUDGET))
+    kill = float(os.environ.get("VENTSIM_FUZZ_KILL", KILL_TIMEOUT))
     start = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="ventsim-fuzz-") as tmp:
-        res = campaign(seed, count, Path(tmp), log=lambda s: print(s, flush=True))
+        res = campaign(seed, count, Path(tmp), log=lambda s: print(s, flush=True), wall=wall, timeout=kill)
     c = res["counts"]
     print(f"seed {seed}, {count} mutations in {time.monotonic() - start:.0f} s: "
           f"{c['traceback']} tracebacks, {c['hang']} hangs, {c['non-finite success']} non-finite successes, "
           f"{c['clean error']} clean errors, {c['legal run']} legal runs; slowest run {res['max wall [s]']:.1f} s")
+    bad = [f"{name}: {what}: {out['kind']}: {(out['detail'].strip().splitlines() or [''])[-1][:200]}"
+           for name, what, out in res["bad"]]
+    print(json.dumps({"counts": dict(c), "bad": bad, "max wall [s]": res["max wall [s]"]}))
     return 1 if res["bad"] else 0
 
 
