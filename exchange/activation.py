@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Activation", "activated_area"]
+__all__ = ["Activation", "activated_area", "arm_pop_vents"]
 
 
 @dataclass(frozen=True)
@@ -90,3 +90,17 @@ def activated_area(area: float, t: float, activation: Activation | None, popped:
     if activation.delta_area:
         area = max(area - area_at_activation, 0.0)
     return a * area
+
+
+def arm_pop_vents(net, t: float, y) -> list:
+    """:meth:`Network.arm`: at the start of a run, every pop vent already above its pop pressure starts its hold (or opens) now,
+    as if its pressure had just crossed it; returns the labels of these pops (for the event log)."""
+    labels = []
+    for j, ex in enumerate(net.exchanges):
+        act = ex.activation
+        if act is None or act.pop_pressure is None or net.popped[j] or net.holding_since[j] is not None:
+            continue
+        if net._pop_switch(t, y, j) > 0.0:
+            net.on_event(t, y, f"{ex.name}:pop")
+            labels.append(f"{ex.name}:pop")
+    return labels

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cavity.cavity import CavityState
-from .activation import activated_area
+from .activation import activated_area, arm_pop_vents
 from .orifice import LINEAR_BELOW
 from .vent import GasPoint
 
@@ -69,20 +69,6 @@ def gas_point(state) -> GasPoint:
         return GasPoint(state.pressure, T, 0.0, 1.0, 1.4, 0.0, state.masses)
     return GasPoint(state.pressure, T, state.density, mix.gas_constant, mix.gamma(T), state.specific_enthalpy,
                     state.masses / mix.mass)
-
-
-def arm_pop_vents(net, t: float, y) -> list:
-    """:meth:`Network.arm`: at the start of a run, every pop vent already above its pop pressure starts its hold (or opens) now,
-    as if its pressure had just crossed it; returns the labels of these pops (for the event log)."""
-    labels = []
-    for j, ex in enumerate(net.exchanges):
-        act = ex.activation
-        if act is None or act.pop_pressure is None or net.popped[j] or net.holding_since[j] is not None:
-            continue
-        if net._pop_switch(t, y, j) > 0.0:
-            net.on_event(t, y, f"{ex.name}:pop")
-            labels.append(f"{ex.name}:pop")
-    return labels
 
 
 @dataclass
