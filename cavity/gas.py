@@ -125,8 +125,10 @@ class Mixture:
     def temperature(self, U: float, T_guess: float) -> float:
         """Temperature [K] whose internal energy is U [J], by Newton's method on the analytic U(T).
 
-        U(T) is strictly increasing (Cv > 0), so Newton converges from any positive guess in a few steps;
-        steps are kept above :attr:`Tolerances.temperature_floor`. Where cp is constant over a range (U linear
+        U(T) is strictly increasing (Cv > 0) over the data, so Newton converges from any positive guess in a few
+        steps; steps are kept above :attr:`Tolerances.temperature_floor` and within a factor 2 of the last iterate
+        (a polynomial cp such as the Abaqus air deck turns negative far above its data, giving U(T) a second,
+        spurious root that an undamped step from a poor guess can land on). Where cp is constant over a range (U linear
         in T) the Newton step lands on the root at once, and that root is returned as soon as it lies in the
         same range.
         """
@@ -143,7 +145,7 @@ class Mixture:
             else:
                 U_T = T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T + off - nR * T
                 cv = a + T * (b + T * (c + T * (d + T * f))) + e / (T * T) - nR
-                T_new = T - (U_T - U) / cv
+                T_new = min(max(T - (U_T - U) / cv, 0.5 * T), 2.0 * T)  # damped: never leaps onto a far root
             if T_new < TOL.temperature_floor:
                 T_new = 0.5 * (T + TOL.temperature_floor)
             if abs(T_new - T) <= TOL.newton_rtol * T_new:
