@@ -97,7 +97,7 @@ class AreaTrack:
     @property
     def areas(self) -> np.ndarray:
         """(intervals,) leakage area of each interval at the reference face areas [m^2]."""
-        return np.array([leak_area(self.total_area, float(o), self.effective_area, self.permeability)
+        return np.array([max(leak_area(self.total_area, float(o), self.effective_area, self.permeability), 0.0)
                          for o in self.obstruction])
 
     def grouped(self, window: float) -> "AreaTrack":
@@ -150,10 +150,11 @@ class AreaTrack:
         """Leakage area [m^2] at θ with the active set of interval i."""
         if self.weights_at is not None:
             w, total = self.weights_at(theta)
-            return leak_area(total, float(np.dot(self._active_set(i), w)), self.effective_area, self.permeability)
+            obstruction = min(float(np.dot(self._active_set(i), w)), total)  # round-off never below zero area
+            return max(leak_area(total, obstruction, self.effective_area, self.permeability), 0.0)
         s2 = float(table_values(self.scale, np.array([theta]))[0]) ** 2 if self.scale is not None else 1.0
-        return leak_area(self.total_area * s2, float(self.obstruction[i]) * s2, self.effective_area,
-                         self.permeability)
+        return max(leak_area(self.total_area * s2, float(self.obstruction[i]) * s2, self.effective_area,
+                             self.permeability), 0.0)
 
     def _active_set(self, i: int) -> np.ndarray:
         """(n,) bool active set of interval i, moved to from the last one asked (crossings replayed)."""

@@ -2,14 +2,16 @@
 certified crossings and the incremental area track."""
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import numpy as np
 
 import blockage
+from cavity.caution import caution
 
 from .area_track import AreaTrack, node_weights
-from .crossings import RESOLUTION, certified_crossings
+from .crossings import RESOLUTION, SearchBudget, certified_crossings
 from .errors import SceneError
 from .mesh_series import SUFFIXES, read_mesh_series
 from .gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
@@ -116,6 +118,22 @@ def _weights_at(surface, path):
     return at
 
 
+def _search(scene, j, field, n, knots):
+    """The certified crossings of exchange j within the scene's wall budget, with a caution when leaves of the
+    resolution stayed unsettled (a graze shorter than it may be missed)."""
+    wall = getattr(getattr(scene, "limits", None), "wall", 0.0) or np.inf
+    try:
+        found = certified_crossings(field.excess, n, knots, field.speed(knots), deadline=time.perf_counter() + wall)
+    except SearchBudget as exc:
+        raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"the crossing search of the leakage surface "
+                                                                  f"stopped at limits.wall = {wall:g} s ({exc}); "
+                                                                  "raise limits.wall or coarsen the surface") from None
+    if found.unresolved:
+        caution(f"exchange {scene.exchange[j].name}: {found.unresolved} node intervals of {RESOLUTION:g} of the "
+                "range stayed within the bound of the tolerance: a contact shorter than that may be missed there")
+    return found
+
+
 def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
     """(GeometricArea, (surface or None, positions)) of exchange j, or (None, None) when it has a plain area.
 
@@ -146,7 +164,7 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
     field = GapField(path, placements, tol, max(CUTOFF_TOLERANCES * tol, CUTOFF_EXTENT * size),
                      surface.edges if e.edge_contact else None)
     knots = _knots(driver, path, driver.lo, driver.hi)
-    found = certified_crossings(field.excess, len(path.x0), knots, field.speed(knots))
+    found = _search(scene, j, field, len(path.x0), knots)
     track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
     if driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
         track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))

@@ -11,24 +11,39 @@ is > 0 or the second ≤ 0. Every unsettled interval is bisected, all nodes toge
 level), until it is settled or shorter than the resolution h_min; the leaves whose ends differ in state hold a
 crossing, located to a few ulp by regula falsi (Illinois). Guarantee: every contact, and every release, that
 lasts at least h_min is found and timed to machine precision; a contact shorter than h_min can be missed, and
-then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas).
+then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). The one
+exception is a node whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES`
+sub-intervals of a knot interval (a plate sliding along a seat just outside the tolerance): that pair is not
+bisected further, its crossings found so far are kept, and it is counted in ``unresolved`` (a warning).
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Crossings", "certified_crossings", "RESOLUTION", "batched_roots"]
+__all__ = ["Crossings", "certified_crossings", "RESOLUTION", "batched_roots", "SearchBudget", "MAX_PENDING"]
 
 #: h_min as a fraction of the searched range of θ.
 RESOLUTION = 1e-10
+#: Unsettled (node, interval) pairs at one bisection level beyond which the search stops (memory).
+MAX_PENDING = 20_000_000
+#: Unsettled sub-intervals of one (node, knot interval) beyond which that pair is not bisected further: its gap
+#: hovers within the bound of the tolerance (a plate sliding along a seat just outside it); counted as unresolved.
+MAX_LEAVES = 64
+
+
+class SearchBudget(RuntimeError):
+    """The crossing search ran past its wall-time deadline or its pending-pair budget."""
 
 
 @dataclass(frozen=True)
 class Crossings:
     """Contact changes of n nodes on [lo, hi]: ``initial`` (n,) bool active at lo; ``theta`` (c,) sorted, the
-    node (c,) and its state after (c,) bool; ``resolution`` h_min; ``evaluations`` gap queries made."""
+    node (c,) and its state after (c,) bool; ``resolution`` h_min; ``evaluations`` gap queries made;
+    ``unresolved`` leaves of length h_min the bound could not settle though both ends agree (a graze shorter
+    than h_min may hide there)."""
 
     initial: np.ndarray
     theta: np.ndarray
@@ -36,6 +51,7 @@ class Crossings:
     state: np.ndarray
     resolution: float
     evaluations: int = 0
+    unresolved: int = 0
 
     def active_at(self, theta: float) -> np.ndarray:
         """(n,) bool: active nodes at θ (right limit at a crossing)."""
@@ -45,7 +61,8 @@ class Crossings:
         return active
 
 
-def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLUTION) -> Crossings:
+def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLUTION,
+                        deadline: float = np.inf) -> Crossings:
     """All crossings of f_i(θ) = 0 for nodes i < n on [knots[0], knots[-1]].
 
     Parameters
@@ -60,6 +77,8 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         Bound on |df_i/dθ| on [knots[j], knots[j+1]] [m per unit of θ].
     resolution : float
         h_min as a fraction of the range.
+    deadline : float
+        ``time.perf_counter()`` after which :class:`SearchBudget` is raised (checked once per level).
     """
     knots = np.asarray(knots, dtype=float)
     h_min = resolution * (knots[-1] - knots[0])
@@ -70,19 +89,31 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
     b = np.repeat(knots[1:], n)
     fa, fb = F[:-1].ravel(), F[1:].ravel()
     node = np.tile(nodes, len(knots) - 1)
+    origin = np.arange(node.size)
     L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
         if len(knots) > 1 else np.zeros(0)
-    brackets = []
+    brackets, unresolved = [], 0
     while a.size:
+        if time.perf_counter() > deadline or a.size > MAX_PENDING:
+            raise SearchBudget(f"{a.size} node intervals still unsettled after {evaluations} gap evaluations")
         h = b - a
         settled = (((fa > 0) & (fb > 0) & (fa + fb - L * h > 0))
                    | ((fa <= 0) & (fb <= 0) & (fa + fb + L * h <= 0)))
         leaf = ~settled & (h <= h_min)
         change = leaf & ((fa <= 0) != (fb <= 0))
+        unresolved += int(np.count_nonzero(leaf & ~change))
         if change.any():
             brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
         split = ~settled & ~leaf
-        a, b, fa, fb, node, L = a[split], b[split], fa[split], fb[split], node[split], L[split]
+        crowded = np.bincount(origin[split], minlength=origin.max() + 1 if origin.size else 0) > MAX_LEAVES
+        if crowded.any():  # this pair hovers at the tolerance: stop bisecting it, say so
+            stuck = split & crowded[origin]
+            unresolved += int(np.count_nonzero(stuck & ((fa <= 0) == (fb <= 0))))
+            change = stuck & ((fa <= 0) != (fb <= 0))
+            if change.any():
+                brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
+            split &= ~stuck
+        a, b, fa, fb, node, L, origin = (v[split] for v in (a, b, fa, fb, node, L, origin))
         if not a.size:
             break
         m = 0.5 * (a + b)
@@ -90,18 +121,18 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         evaluations += m.size
         a, b = np.concatenate([a, m]), np.concatenate([m, b])
         fa, fb = np.concatenate([fa, fm]), np.concatenate([fm, fb])
-        node, L = np.concatenate([node, node]), np.concatenate([L, L])
-    return _located(F[0] <= 0, brackets, excess, h_min, evaluations)
+        node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
+    return _located(F[0] <= 0, brackets, excess, h_min, evaluations, unresolved)
 
 
-def _located(initial, brackets, excess, h_min, evaluations) -> Crossings:
+def _located(initial, brackets, excess, h_min, evaluations, unresolved) -> Crossings:
     if not brackets:
         empty = np.zeros(0)
-        return Crossings(initial, empty, empty.astype(np.int64), empty.astype(bool), h_min, evaluations)
+        return Crossings(initial, empty, empty.astype(np.int64), empty.astype(bool), h_min, evaluations, unresolved)
     a, b, fa, fb, node = (np.concatenate(parts) for parts in zip(*brackets))
     roots, calls = batched_roots(excess, node, a, b, fa, fb)
     order = np.lexsort((node, roots))
-    return Crossings(initial, roots[order], node[order], (fb <= 0)[order], h_min, evaluations + calls)
+    return Crossings(initial, roots[order], node[order], (fb <= 0)[order], h_min, evaluations + calls, unresolved)
 
 
 def batched_roots(excess, nodes, a, b, fa, fb, iterations=200):

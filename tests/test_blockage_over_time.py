@@ -341,3 +341,21 @@ def test_a_rotating_flap_and_a_deforming_blocker_agree_with_evaluate_at_every_sa
         model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
         assert len(model.network.areas[0].track.crossings) >= 4, body["name"]
         assert sampled_disagreements(model, np.linspace(0.0, 0.02, 401)) == [], body["name"]
+
+
+def test_a_plate_sliding_just_outside_the_tolerance_is_searched_to_the_resolution_and_says_so(tmp_path):
+    """The gap stays 1e-15 m above the tolerance while the plate slides along the vent: the speed bound cannot
+    settle any interval, so the search bisects to h_min everywhere, finds no contact, and warns."""
+    grid_vent(tmp_path / "vent.obj", n=2)
+    plate = trimesh.creation.box(extents=(0.2, 0.2, 0.002))
+    plate.apply_translation((0.0, 0.0, 1e-3 + 1e-15 + 0.001))  # lower face TOL·10 + 1e-15 above the vent
+    plate.export(tmp_path / "plate.ply")
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": 0.01, "output_interval": 0.001}
+    data["body"] = [{"name": "plate", "mesh": "plate.ply", "axis": [1, 0, 0], "velocity": 1.0}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.obj", "blocked_by": ["plate"],
+                         "contact_tolerance": 1e-3}]
+    model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    assert any("contact shorter than that may be missed" in w for w in model.warnings)
+    track = model.network.areas[0].track
+    assert len(track.crossings) == 0 and track.source.unresolved > 0 and track(0.005) == track.total_area
