@@ -105,14 +105,9 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         if change.any():
             brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
         split = ~settled & ~leaf
-        crowded = np.bincount(origin[split], minlength=origin.max() + 1 if origin.size else 0) > MAX_LEAVES
-        if crowded.any():  # this pair hovers at the tolerance: stop bisecting it, say so
-            stuck = split & crowded[origin]
-            unresolved += int(np.count_nonzero(stuck & ((fa <= 0) == (fb <= 0))))
-            change = stuck & ((fa <= 0) != (fb <= 0))
-            if change.any():
-                brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
-            split &= ~stuck
+        stuck = _crowded(split, origin, (a, b, fa, fb, node), brackets)
+        unresolved += int(np.count_nonzero(stuck & ((fa <= 0) == (fb <= 0))))
+        split &= ~stuck
         a, b, fa, fb, node, L, origin = (v[split] for v in (a, b, fa, fb, node, L, origin))
         if not a.size:
             break
@@ -123,6 +118,19 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         fa, fb = np.concatenate([fa, fm]), np.concatenate([fm, fb])
         node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
     return _located(F[0] <= 0, brackets, excess, h_min, evaluations, unresolved)
+
+
+def _crowded(split, origin, arrays, brackets) -> np.ndarray:
+    """(k,) bool: the intervals of (node, knot interval) pairs holding more than MAX_LEAVES unsettled ones (their
+    gap hovers at the tolerance): not bisected further; those whose ends differ go to ``brackets``."""
+    count = np.bincount(origin[split], minlength=int(origin.max()) + 1 if origin.size else 0)
+    stuck = split & (count > MAX_LEAVES)[origin]
+    if stuck.any():
+        a, b, fa, fb, node = arrays
+        change = stuck & ((fa <= 0) != (fb <= 0))
+        if change.any():
+            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
+    return stuck
 
 
 def _located(initial, brackets, excess, h_min, evaluations, unresolved) -> Crossings:
