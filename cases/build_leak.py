@@ -129,8 +129,8 @@ def _search(scene, j, field, n, knots):
                                                                   f"stopped at limits.wall = {wall:g} s ({exc}); "
                                                                   "raise limits.wall or coarsen the surface") from None
     if found.unresolved:
-        caution(f"exchange {scene.exchange[j].name}: {found.unresolved} node intervals of {RESOLUTION:g} of the "
-                "range stayed within the bound of the tolerance: a contact shorter than that may be missed there")
+        caution(f"exchange {scene.exchange[j].name}: {found.unresolved} node intervals hover within the bound of the "
+                "contact tolerance and were not bisected further: a contact shorter than that may be missed there")
     return found
 
 

@@ -42,8 +42,9 @@ class SearchBudget(RuntimeError):
 class Crossings:
     """Contact changes of n nodes on [lo, hi]: ``initial`` (n,) bool active at lo; ``theta`` (c,) sorted, the
     node (c,) and its state after (c,) bool; ``resolution`` h_min; ``evaluations`` gap queries made;
-    ``unresolved`` leaves of length h_min the bound could not settle though both ends agree (a graze shorter
-    than h_min may hide there)."""
+    ``unresolved`` sub-intervals of (node, knot interval) pairs left unbisected under :data:`MAX_LEAVES` though
+    the bound could not settle them (a graze may hide there; grazes shorter than h_min are within the guarantee
+    and not counted)."""
 
     initial: np.ndarray
     theta: np.ndarray
@@ -101,7 +102,6 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
                    | ((fa <= 0) & (fb <= 0) & (fa + fb + L * h <= 0)))
         leaf = ~settled & (h <= h_min)
         change = leaf & ((fa <= 0) != (fb <= 0))
-        unresolved += int(np.count_nonzero(leaf & ~change))
         if change.any():
             brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
         split = ~settled & ~leaf

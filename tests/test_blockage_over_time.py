@@ -345,7 +345,7 @@ def test_a_rotating_flap_and_a_deforming_blocker_agree_with_evaluate_at_every_sa
 
 def test_a_plate_sliding_just_outside_the_tolerance_is_searched_to_the_resolution_and_says_so(tmp_path):
     """The gap stays 1e-15 m above the tolerance while the plate slides along the vent: the speed bound cannot
-    settle any interval, so the search bisects to h_min everywhere, finds no contact, and warns."""
+    settle any interval, so the search bisects until the pair is crowded, finds no contact, and warns."""
     grid_vent(tmp_path / "vent.obj", n=2)
     plate = trimesh.creation.box(extents=(0.2, 0.2, 0.002))
     plate.apply_translation((0.0, 0.0, 1e-3 + 1e-15 + 0.001))  # lower face TOL·10 + 1e-15 above the vent
