@@ -29,14 +29,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .errors import SceneError
-from .sweep_folder import MANIFEST, write_json
+from .sweep_folder import DESIGNS, MANIFEST, PLOT, RESULTS_CSV, RESULTS_PARQUET, ROW, write_json
 
 __all__ = ["sweep", "SweepResult", "Plan", "plan_sweep", "run_variant", "run_variants", "batch_size", "figures",
            "dask_client", "add_sweep_parser", "RESULTS_CSV", "RESULTS_PARQUET", "PLOT", "MANIFEST"]
 
-RESULTS_CSV, RESULTS_PARQUET, PLOT = "results.csv", "results.parquet", "sweep.png"
-ROW = "row.json"  # in each variant's folder, written last: the variant is finished
-DESIGNS = ("full", "list", "lhs")
 
 
 @dataclass(frozen=True)

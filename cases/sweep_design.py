@@ -32,7 +32,7 @@ import numpy as np
 
 from .errors import SceneError, SweepError
 from .schema import suggest, toml_name
-from .sweep import DESIGNS
+from .sweep_folder import DESIGNS
 
 __all__ = ["SweepError", "DESIGNS", "parse_values", "parse_vary", "parse_scalar", "full_design", "list_design",
            "lhs_design", "read_variants", "make_design", "resolve_key", "apply_variant", "variant_id",

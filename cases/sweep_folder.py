@@ -9,9 +9,12 @@ from pathlib import Path
 
 from .errors import SweepError
 
-__all__ = ["check_manifest", "folder_lock", "write_json", "MANIFEST", "LOCK"]
+__all__ = ["check_manifest", "folder_lock", "write_json", "MANIFEST", "LOCK", "RESULTS_CSV", "RESULTS_PARQUET", "PLOT", "ROW", "DESIGNS"]
 
 MANIFEST, LOCK = "sweep.json", ".sweep.lock"
+RESULTS_CSV, RESULTS_PARQUET, PLOT = "results.csv", "results.parquet", "sweep.png"
+ROW = "row.json"  # in each variant's folder, written last: the variant is finished
+DESIGNS = ("full", "list", "lhs")
 
 
 def write_json(path: Path, obj) -> None:

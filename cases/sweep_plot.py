@@ -19,7 +19,7 @@ import numpy as np
 from cavity.progress import ProgressBar
 
 from .output import atomic_path
-from .sweep import RESULTS_CSV, RESULTS_PARQUET, ROW
+from .sweep_folder import RESULTS_CSV, RESULTS_PARQUET, ROW
 
 __all__ = ["flat", "arrow_column", "write_table", "ResultsTable", "load_records", "Progress", "responses",
            "plot_sweep"]

@@ -107,12 +107,10 @@ def _announce_compilation(kernel) -> None:
 
 def unsupported_reason(net) -> str | None:
     """Why ``net`` cannot be lowered (None: it can)."""
-    from .network import Network
-
     if importlib.util.find_spec("numba") is None:
         return "numba is not installed"
     geometry = getattr(net, "lowered_geometry", None)
-    if type(net) is not Network and geometry is None:
+    if not net.is_plain() and geometry is None:
         return f"{type(net).__name__} is not a plain Network"
     if geometry is not None and isinstance(geometry(), str):
         return geometry()

@@ -21,7 +21,7 @@ Array layout (built by :func:`exchange.compiled.lower`):
   has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`),
   geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none); ``ef`` (ne, 8): area [m^2], Cd [-], open time [s], close time [s], pop pressure [Pa], hold time
   [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance: conductance);
-  ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.network.EQUALISED_BELOW`); ``op`` (ne,)
+  ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.equalised.EQUALISED_BELOW`); ``op`` (ne,)
   int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
   holding);
 - ambient ``amb`` (6 + ns,): p [Pa], T [K], ρ [kg/m^3], R [J/(kg K)], γ [-], h [J/kg], mass fractions;
@@ -37,7 +37,7 @@ from numba import njit
 
 from .compiled_laws import (LINEAR_BELOW, critical_pressure_ratio, fabric_leakage_mass_flow, graefe_mass_flow,
                             orifice_mass_flow)
-from .network import EQUALISED_BELOW, RELEASED_ABOVE
+from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 
 R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
 NEWTON_RTOL = 1e-10  # cavity.tolerances.TOL.newton_rtol

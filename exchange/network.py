@@ -19,6 +19,7 @@ import numpy as np
 
 from cavity.cavity import CavityState
 from .activation import activated_area, arm_pop_vents
+from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 from .orifice import LINEAR_BELOW
 from .vent import GasPoint
 
@@ -27,13 +28,6 @@ __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
 LEDGER_PER_EXCHANGE = 2  # mass, energy
 LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
 
-#: Relative pressure difference |Δp|/max(p_a, p_b) [-] below which a two-way pneumatic exchange is held closed
-#: ("equalised"): at Δp = 0 its law is a sliding mode (it pushes back from both sides, with a slope that makes the
-#: equalised state stiff for explicit steps), so once the two sides agree to this level the exchange carries no
-#: flow until the rest of the network drives them apart again.
-EQUALISED_BELOW = 1e-10
-#: |Δp|/max(p_a, p_b) [-] above which an equalised exchange opens again (100× the entry level: no chattering).
-RELEASED_ABOVE = 1e-8
 
 
 _LIQUID = np.ones(1)
@@ -280,6 +274,10 @@ class Network:
             cached = key + (lower(self),)
             self.__dict__["_compiled"] = cached
         return cached[-1]
+
+    def is_plain(self) -> bool:
+        """True for a plain :class:`Network` (a subclass lowers itself only through ``lowered_geometry``)."""
+        return type(self) is Network
 
     def compiled_unsupported(self) -> str | None:
         """Why :meth:`compiled_solver` is None (None: it is supported)."""
