@@ -12,7 +12,7 @@ import numpy as np
 
 from .tables import Table
 
-__all__ = ["mesh_volume", "closed_mesh_volume", "MeshError", "FixedVolume", "TableVolume", "ScaledMeshVolume",
+__all__ = ["mesh_volume", "mesh_volumes", "closed_mesh_volume", "MeshError", "FixedVolume", "TableVolume", "ScaledMeshVolume",
            "effective_volume", "SeriesVolume", "series_volume_coefficients", "volume_cubic"]
 
 
@@ -46,8 +46,20 @@ def mesh_volume(vertices, faces) -> float:
     >>> round(mesh_volume(v, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]), 15)
     0.166666666666667
     """
-    x = np.asarray(vertices, dtype=float)[np.asarray(faces)]
-    return float(np.einsum("ij,ij->i", x[:, 0], np.cross(x[:, 1], x[:, 2])).sum() / 6.0)
+    return float(mesh_volumes(vertices, faces))
+
+
+def mesh_volumes(vertices, faces) -> np.ndarray:
+    """:func:`mesh_volume` of many placements of one mesh at once: ``vertices`` (..., n, 3) [m] → (...) [m^3].
+
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    >>> mesh_volumes(np.stack([v, 2 * v]), [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]).round(12).tolist()
+    [0.166666666667, 1.333333333333]
+    """
+    x = np.asarray(vertices, dtype=float)
+    f = np.asarray(faces)
+    x0, x1, x2 = x[..., f[:, 0], :], x[..., f[:, 1], :], x[..., f[:, 2], :]
+    return np.einsum("...i,...i->...", x0, np.cross(x1, x2)).sum(axis=-1) / 6.0
 
 
 def closed_mesh_volume(mesh, name: str = "mesh") -> float:
