@@ -7,6 +7,7 @@ sampled on a grid and interpolated by a C² cubic spline, with dV/dθ from the s
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -95,10 +96,15 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
     x0, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
     v0 = mesh_volume(x0, faces)
     node_faces = mesh.vertex_faces  # (n, k) padded with -1
-    placed = _rigid_placements(wrapper, grid, x0)
-    if placed is not None:
-        return WrappedVolume(CubicSpline(grid, _volumes_of_placements(placed, x0, faces, node_faces, v0)),
-                             theta_of, theta_rate, lo, hi, tuple(breakpoints))
+    key = _rigid_key(wrapper, grid, x0, faces)
+    if key is not None:
+        vols = _RIGID_VOLUMES.get(key)
+        if vols is None:
+            vols = _volumes_of_placements(_rigid_placements(wrapper, grid, x0), x0, faces, node_faces, v0)
+            _RIGID_VOLUMES[key] = vols
+            while len(_RIGID_VOLUMES) > 8:
+                del _RIGID_VOLUMES[next(iter(_RIGID_VOLUMES))]
+        return WrappedVolume(CubicSpline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
     vols = []
     for th, x in zip(grid, (wrapper.place(x0, th) for th in grid)):
         moved = np.flatnonzero(np.any(x != x0, axis=1))
@@ -109,6 +115,22 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
         touched = touched[touched >= 0]
         vols.append(v0 + mesh_volume(x, faces[touched]) - mesh_volume(x0, faces[touched]))
     return WrappedVolume(CubicSpline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
+
+
+#: Sampled volumes of one rigid body's placements, keyed by the digest of everything they depend on (the mesh,
+#: the body's mesh, its transforms on the grid): the variants of a sweep that leave the geometry alone reuse them.
+_RIGID_VOLUMES: dict = {}
+
+
+def _rigid_key(wrapper: Wrapper, grid, x0, faces) -> str | None:
+    """Content digest of a one-rigid-body wrapping on ``grid`` (None for several or deforming bodies)."""
+    if len(wrapper.bodies) != 1 or wrapper.bodies[0].deforming:
+        return None
+    body = wrapper.bodies[0]
+    digest = hashlib.sha1()
+    for a in (x0, faces, grid, np.array([body.transform(th) for th in grid]), body.mesh.vertices, body.mesh.faces):
+        digest.update(np.ascontiguousarray(a).tobytes())
+    return digest.hexdigest()
 
 
 def _volumes_of_placements(placed, x0, faces, node_faces, v0) -> np.ndarray:
@@ -123,13 +145,11 @@ def _volumes_of_placements(placed, x0, faces, node_faces, v0) -> np.ndarray:
 
 
 def _rigid_placements(wrapper: Wrapper, grid, x0):
-    """Node positions of the wrapped mesh at every θ of ``grid`` in one tree query (one rigid body), or None.
+    """Node positions of the wrapped mesh at every θ of ``grid`` in one tree query (one rigid body).
 
     In the body's own frame the body is fixed and the nodes move: all (θ, node) pairs near the body are
     projected together, instead of one query per θ.
     """
-    if len(wrapper.bodies) != 1 or wrapper.bodies[0].deforming:
-        return None
     body = wrapper.bodies[0]
     blocker = wrapper.placed(grid[0])[0][0]
     T = np.array([body.transform(th) for th in grid])
