@@ -1,8 +1,10 @@
 """The network's right-hand side and switch functions compiled with numba, on the flat arrays of
 :mod:`exchange.compiled`.
 
-Each function mirrors a pure Python law or method line by line (named in its docstring) so that the compiled path
-gives the same derivatives as :meth:`exchange.network.Network.rhs` to round-off; ``tests/test_compiled.py``
+The flow laws are not copied here: the orifice, fabric-leakage and Graefe laws of :mod:`exchange.orifice` and
+:mod:`exchange.fabric` are numba functions, inlined into this right-hand side and called as they are by Python.
+The network's bookkeeping (states from (m, U), areas, transfers) follows :meth:`exchange.network.Network.rhs`
+(named in each docstring) so that both paths give the same derivatives to round-off; ``tests/test_compiled.py``
 pairs them. Scalar arithmetic only, SI units throughout. The helpers are inlined (``inline="always"``): numba links
 separately compiled functions without inlining them, and a call passing a few arrays costs ~80 ns, as much as the
 law itself (measured: the whole right-hand side 0.54 → 0.37 µs).
@@ -35,8 +37,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .compiled_laws import (LINEAR_BELOW, critical_pressure_ratio, fabric_leakage_mass_flow, graefe_mass_flow,
-                            orifice_mass_flow)
+from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
+from .orifice import LINEAR_BELOW, critical_pressure_ratio, orifice_mass_flow
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 
 R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL

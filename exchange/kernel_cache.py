@@ -19,8 +19,11 @@ STAMP = "ventsim_kernels.sha256"
 
 
 def kernel_sources() -> list:
-    """The modules whose numba kernels call each other (the compiled network path)."""
-    return sorted(HERE.glob("compiled*.py")) + [HERE.parent / "cavity" / "rk_compiled.py"]
+    """The modules whose numba kernels call each other (the compiled network path): every module of ``exchange``
+    and ``cavity`` that compiles with ``@njit`` (the laws are inlined into the right-hand side)."""
+    found = [p for folder in (HERE, HERE.parent / "cavity") for p in sorted(folder.glob("*.py"))
+             if p.name != "kernel_cache.py" and "@njit" in p.read_text(encoding="utf-8")]
+    return sorted(found)
 
 
 def purge_stale() -> bool:
@@ -29,6 +32,8 @@ def purge_stale() -> bool:
     if os.environ.get("NUMBA_CACHE_DIR"):
         return False
     sources = kernel_sources()
+    if not sources:
+        return False
     digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources if p.is_file())).hexdigest()
     folders = sorted({p.parent / "__pycache__" for p in sources})
     stamp = folders[0] / STAMP

@@ -1,11 +1,14 @@
 """Isentropic orifice flow with choking (Abaqus *FLUID EXCHANGE PROPERTY, TYPE=ORIFICE).
 
-Scalar pure functions: they are called inside the right-hand side of the cavity ODE, where Python's ``math`` on
-floats is several times faster than numpy on 0-d arrays.
+Scalar pure functions, compiled by numba (``@njit``): the compiled right-hand side (:mod:`exchange.compiled_rhs`)
+inlines them and Python calls the same compiled code, so each law exists once. Called from Python they take floats
+(ints are cast) and return a float.
 """
 from __future__ import annotations
 
 import math
+
+from numba import njit
 
 __all__ = ["critical_pressure_ratio", "orifice_mass_flow", "choked_flow_factor", "is_choked", "LINEAR_BELOW"]
 
@@ -16,6 +19,7 @@ __all__ = ["critical_pressure_ratio", "orifice_mass_flow", "choked_flow_factor",
 LINEAR_BELOW = 1e-4
 
 
+@njit(cache=True, inline="always")
 def critical_pressure_ratio(gamma: float) -> float:
     r"""Downstream/upstream pressure ratio below which an isentropic orifice is choked [-].
 
@@ -80,6 +84,7 @@ def is_choked(p_up: float, p_down: float, gamma: float) -> bool:
     return p_down <= p_up * critical_pressure_ratio(gamma)
 
 
+@njit(cache=True, inline="always")
 def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: float,
                       area: float, Cd: float = 1.0) -> float:
     r"""Mass flow rate through an isentropic orifice, choked below the critical pressure [kg/s].
@@ -154,11 +159,13 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
     return Cd * area * p_up / math.sqrt(R * T_up) * math.sqrt(2.0 * gamma / (gamma - 1.0)) * root
 
 
+@njit(cache=True, inline="always")
 def _root_bracket(q: float, gamma: float) -> float:
     """sqrt(q^(2/γ) − q^((γ+1)/γ)) = sqrt(q^(2/γ)·(1 − q^((γ−1)/γ))); expm1 keeps precision near q = 1."""
     return math.sqrt(q ** (2.0 / gamma) * -math.expm1(math.log(q) * (gamma - 1.0) / gamma))
 
 
+@njit(cache=True, inline="always")
 def _root_bracket_slope(s: float, gamma: float) -> float:
     """d/ds of :func:`_root_bracket` at q = 1 − s (analytic)."""
     q = 1.0 - s

@@ -21,7 +21,6 @@ from cases.runner import cavity_summary, compiled_readback, history_columns, his
 from cases.scene import load_scene, scene_from_dict
 from cavity.integration import SolverError, integrate
 from exchange import orifice
-from exchange.compiled_rhs import orifice_mass_flow
 from exchange.compiled_solver import rhs as compiled_rhs
 from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
@@ -54,11 +53,15 @@ def pressures(model, traj, times):
     return np.array(rows)
 
 
-@pytest.mark.parametrize("p_down", [1.0e5, 1.5e5, 1.9e5, 2.0e5 - 10.0, 2.0e5 - 1e-3, 2.0e5, 2.5e5])
-@pytest.mark.parametrize("gamma", [1.3, 1.4, 1.667])
-def test_jitted_orifice_law_equals_the_pure_function(p_down, gamma):
-    args = (2.0e5, 320.0, p_down, 287.0, gamma, 1.3e-4, 0.7)
-    assert orifice_mass_flow(*args) == pytest.approx(orifice.orifice_mass_flow(*args), rel=1e-14, abs=0.0)
+def test_each_flow_law_is_one_function_on_both_paths():
+    """The compiled right-hand side inlines the very laws Python calls (numba dispatchers), no mirror copies."""
+    from exchange import compiled_rhs, fabric
+
+    assert compiled_rhs.orifice_mass_flow is orifice.orifice_mass_flow
+    assert compiled_rhs.fabric_leakage_mass_flow is fabric.fabric_leakage_mass_flow
+    assert compiled_rhs.graefe_mass_flow is fabric.graefe_mass_flow
+    assert compiled_rhs.critical_pressure_ratio is orifice.critical_pressure_ratio
+    assert hasattr(orifice.orifice_mass_flow, "py_func")  # compiled, callable from Python
 
 
 @pytest.mark.parametrize("name", ["blowdown_subsonic", "compression_mesh", "airbag_vented", "airbag_impactor",
@@ -383,27 +386,6 @@ def test_fabric_and_resistance_laws_are_the_same_on_both_paths(tmp_path, law, tw
     traj = assert_same_on_both_paths(model)
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
     assert run(model).summary["solver"]["path"] == "compiled"
-
-
-GRID = [(p_up, p_down, T, gamma) for p_up in (1.0e5, 2.0e5, 7.3e5) for p_down in (0.5e5, 1.0e5, 1.99999e5, 2.5e5)
-        for T in (250.0, 600.0) for gamma in (1.3, 1.4, 1.667)] + [(2.0e5, 2.0e5 * (1 - 3e-5), 300.0, 1.4),
-                                                                 (2.0e5, 2.0e5 * (1 - 1e-4), 300.0, 1.4)]
-
-
-def test_jitted_fabric_laws_equal_the_pure_functions():
-    from exchange import compiled_laws, fabric
-
-    for p_up, p_down, T, gamma in GRID:
-        for area, cd, phi in ((1e-4, 0.6, 0.5), (3e-3, 1.0, 1.0), (0.0, 0.7, 0.3)):
-            args = (p_up, T, p_down, 287.0, gamma, area, cd, phi)
-            want = fabric.fabric_leakage_mass_flow(*args)
-            assert compiled_laws.fabric_leakage_mass_flow(*args) == pytest.approx(want, rel=1e-13, abs=0.0), args
-            args = (p_up, p_down, p_up / (287.0 * T), area, cd, phi)
-            want = fabric.graefe_mass_flow(*args)
-            assert compiled_laws.graefe_mass_flow(*args) == pytest.approx(want, rel=1e-13, abs=0.0), args
-            args = (p_up, T, p_down, 287.0, gamma, area, cd)
-            want = orifice.orifice_mass_flow(*args)
-            assert compiled_laws.orifice_mass_flow(*args) == pytest.approx(want, rel=1e-13, abs=0.0), args
 
 
 def test_jitted_right_hand_side_with_pop_fabric_graefe_equals_network_rhs(tmp_path):
