@@ -17,13 +17,13 @@ __all__ = ["body_columns"]
 def _dynamic(model, trajectory, times) -> list:
     net = model.network
     body, k = net.body, net.body_offset
-    s, v, a, f = (np.empty(len(times)) for _ in range(4))
-    for r, t in enumerate(times):
+    ys = trajectory.sample(times)
+    s, v = ys[:, k].copy(), ys[:, k + 1].copy()
+    a, f = np.empty(len(times)), np.empty(len(times))
+    for r, (t, y) in enumerate(zip(times, ys)):
         net.restore(trajectory.mode_at(t))
-        y = trajectory(t)
         net.begin_segment(t, np.inf)
         states = net.states(net.input_time(t), y)
-        s[r], v[r] = y[k], y[k + 1]
         a[r] = net.rhs(t, y)[k + 1]
         f[r] = net.gas_force(y, states)
     name = body.name

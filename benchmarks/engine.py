@@ -1,0 +1,66 @@
+"""One engine against the previous one: every library case solved on the compiled path and on the Python
+(``solve_ivp``) path at the same rtol, in the same run.
+
+Timed is ``cases.runner.run`` (the integration and the history read-back; the model is built once, outside),
+best of ``--repeat`` after a warm-up that pays for numba's loading. The error column is the compiled run's largest
+relative difference from the Python run over every history column (scaled by the column's peak), so the ratio is
+at equal results. Cases that do not lower run on the Python path only ("python" in the path column, no ratio).
+
+Run: python benchmarks/engine.py [--repeat 5] [--cases airbag_impactor airbag_impactor_dynamic]
+"""
+import argparse
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from cases.build import build_model
+from cases.library import CASES, HERE
+from cases.runner import run
+from cases.scene import load_scene
+
+
+def best(model, compiled: bool, repeat: int):
+    m = replace(model, options=replace(model.options, compiled=compiled))
+    results = run(m)  # warm-up
+    wall = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        results = run(m)
+        wall.append(time.perf_counter() - t0)
+    return min(wall), results
+
+
+def difference(a, b) -> float:
+    """max over columns of max|a − b| / max|b| (a, b: history arrays of the same scene, rows by time)."""
+    worst = 0.0
+    for x, y in zip(np.asarray(a, float).T, np.asarray(b, float).T):
+        scale = np.max(np.abs(y))
+        if scale > 0.0:
+            worst = max(worst, float(np.max(np.abs(x - y)) / scale))
+    return worst
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--cases", nargs="+", default=list(CASES))
+    args = ap.parse_args()
+    print(f"{'case':<26} {'rtol':>7} {'path':>9} {'compiled [s]':>12} {'python [s]':>11} {'ratio':>7} "
+          f"{'RHS calls':>10} {'difference':>10}")
+    for name in args.cases:
+        model = build_model(load_scene(HERE / CASES[name]))
+        slow, ref = best(model, False, args.repeat)
+        fast_ok = model.network.compiled_solver() is not None and model.options.method == "DOP853"
+        if not fast_ok:
+            print(f"{name:<26} {model.options.rtol:>7.0e} {'python':>9} {'-':>12} {slow:>11.4f} {'-':>7} "
+                  f"{ref.summary['solver']['rhs_calls']:>10} {'-':>10}")
+            continue
+        fast, res = best(model, True, args.repeat)
+        print(f"{name:<26} {model.options.rtol:>7.0e} {res.summary['solver']['path']:>9} {fast:>12.4f} "
+              f"{slow:>11.4f} {slow / fast:>6.1f}x {res.summary['solver']['rhs_calls']:>10} "
+              f"{difference(res.history, ref.history):>10.1e}")
+
+
+if __name__ == "__main__":
+    main()
