@@ -77,7 +77,9 @@ class SolverOptions:
     compiled : bool or None
         Run the compiled DOP853 path (:mod:`cavity.rk_compiled`; the system lowers itself with
         ``compiled_solver()``): None (default) when the method is DOP853 and the system can be lowered, else the
-        Python path; True: require it (error if the system cannot be lowered); False: never.
+        Python path; True: require it (error if the system cannot be lowered); False: never. With another method
+        a system that lowers runs through ``solve_ivp`` on the compiled right-hand side (``segment_rhs``;
+        ``solver.path`` "python, compiled rhs"), unless ``compiled`` is False.
     """
 
     method: str = "DOP853"
@@ -205,9 +207,8 @@ def _compiled_system(system, options):
     if fast is None and options.compiled:
         raise SolverError(f"the compiled path cannot run {type(system).__name__}: "
                           f"{getattr(system, 'compiled_unsupported', lambda: 'no compiled_solver()')()}")
-    if fast is not None and options.method != "DOP853":
-        raise SolverError(f"the compiled path is DOP853 only; got method {options.method!r}")
-    return fast
+    # other methods run through solve_ivp on the compiled right-hand side (the system's ``segment_rhs``)
+    return fast if options.method == "DOP853" else None
 
 
 _RTOL_FLOOR = 100 * float(np.finfo(float).eps)  # scipy's smallest rtol
@@ -357,7 +358,11 @@ def _advance(system, t, y, stop, options, traj):
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
     events = events + [_step_budget(system, remaining, options, traj.deadline)]
     try:
-        sol = solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
+        rhs = system.segment_rhs(stop) if options.compiled is not False and hasattr(system, "segment_rhs") \
+            else system.rhs
+        if rhs != system.rhs:  # bound methods compare equal, never identical
+            traj.stats["path"] = "python, compiled rhs"
+        sol = solve_ivp(rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
                         max_step=options.max_step, dense_output=True, events=events)
     except (ArithmeticError, ValueError) as exc:
         raise SolverError(f"the right-hand side failed near t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None

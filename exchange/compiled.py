@@ -72,6 +72,29 @@ class CompiledNetwork:
         table[:, 4] = np.arange(len(segs))
         return out[:4] + (table,) + out[5:]
 
+    def rhs_function(self, seg_end: float):
+        """The compiled right-hand side as a Python callable ``f(t, y) -> dy`` for one segment ending at
+        ``seg_end``, in the network's current discrete state (for solve_ivp's other methods: LSODA, Radau, BDF,
+        RK45, RK23 run on the same right-hand side as the compiled DOP853)."""
+        from .compiled_solver import rhs
+
+        model, net = self.model, self.network
+        model[16][:] = [s.temperature for s in net.last_states] if net.last_states else self.T_initial
+        eq, op = model[20], model[21]
+        model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
+        for j in range(len(net.exchanges)):
+            eq[j] = net.equalised[j]
+            op[j] = 0 if model[12][j, 6] == 1 and not net.popped[j] else 1
+        seg_end = float(seg_end)
+
+        def f(t, y):
+            y = np.ascontiguousarray(y, dtype=float)  # one specialisation: solve_ivp passes views at times
+            out = np.empty_like(y)
+            if not rhs(model, float(t), y, out, seg_end):
+                raise ArithmeticError(f"the gas temperature solve failed at t = {t:.9g} s")
+            return out
+        return f
+
     def _mode(self, row) -> tuple:
         """The network's snapshot (:meth:`Network.snapshot`) from a row of the solver's segment table: code
         (bits: equalised exchanges), then per exchange popped, then per exchange the hold start (NaN: none)."""

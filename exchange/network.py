@@ -279,6 +279,12 @@ class Network:
         """True for a plain :class:`Network` (a subclass lowers itself only through ``lowered_geometry``)."""
         return type(self) is Network
 
+    def segment_rhs(self, t1: float):
+        """The right-hand side solve_ivp integrates over a segment ending at t1 (after :meth:`begin_segment`): the
+        compiled one when the network lowers (:meth:`compiled_solver`), else :meth:`rhs`."""
+        fast = self.compiled_solver()
+        return self.rhs if fast is None else fast.rhs_function(t1)
+
     def compiled_unsupported(self) -> str | None:
         """Why :meth:`compiled_solver` is None (None: it is supported)."""
         from .compiled import unsupported_reason
