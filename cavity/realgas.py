@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["RealFluid", "IdealGasFluid", "FluidPoint", "temperature_from_energy", "isentrope_temperature", "IDEAL_LIMIT_DENSITY",
+           "shifted", "TAYLOR_BELOW",
            "MetastableFluid",
            "RealGasSolveError"]
 
@@ -30,8 +31,6 @@ class RealGasSolveError(ArithmeticError):
     """Newton's method found no temperature for the given density and energy (or entropy)."""
 
 
-#: Newton stops when the step is below this fraction of T [-] (quadratic convergence: one step more is exact).
-NEWTON_RTOL = 1e-13
 NEWTON_MAX = 50
 #: Density [kg/m^3] at which the ideal-gas limit is taken for the energy offset (non-ideality ~1e-9).
 IDEAL_LIMIT_DENSITY = 1e-6
@@ -77,6 +76,7 @@ class RealFluid:
         self._state = CP.AbstractState("HEOS", coolprop_name)
         self._film = CP.AbstractState("HEOS", coolprop_name)
         self._DT, self._PT = CP.DmassT_INPUTS, CP.PT_INPUTS
+        self._keys = _derivative_keys(CP)
         self.molar_mass = self._state.molar_mass()
         self.offset = 0.0
         if ideal_enthalpy is not None:
@@ -84,6 +84,8 @@ class RealFluid:
             self._state.update(self._DT, IDEAL_LIMIT_DENSITY, Tr)
             self.offset = ideal_enthalpy(Tr) - self._state.hmass()
         self.metastable = MetastableFluid(self)
+        self._anchor = None  # (ρ, u, T, ∂u/∂ρ|T, cv) of the last :meth:`state`
+
 
     def __repr__(self) -> str:
         return f"RealFluid({self.name!r}, offset={self.offset!r})"
@@ -99,6 +101,24 @@ class RealFluid:
             raise RealGasSolveError(f"{self.name} at rho = {rho!r} kg/m^3, T = {T!r} K is two-phase: a real-gas "
                                     "cavity holds a single-phase fluid") from None
         return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
+
+    def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
+        """:meth:`at` and the partial derivatives of its six fields: ``(point, d/dT at fixed ρ, d/dρ at fixed T or
+        None)`` (CoolProp's analytic derivatives of the equation of state, 0.15 µs each)."""
+        return _jet(self._state, self.at(rho, T), T, self._keys, density_too)
+
+    def state(self, rho: float, u: float, T_guess: float) -> tuple:
+        """(T [K], FluidPoint) at density ρ [kg/m^3] and specific energy u [J/kg]: :func:`temperature_from_energy`
+        started from the first-order prediction off the previous call, T_a + (u − u_a − ∂u/∂ρ|T·(ρ − ρ_a))/cv
+        (an integrator asks for nearby states: one evaluation and a Taylor step, mostly), else from T_guess."""
+        a = self._anchor
+        if a is not None:
+            guess = a[2] + (u - a[1] - a[3] * (rho - a[0])) / a[4]
+            T_guess = guess if 0.5 * T_guess < guess < 2.0 * T_guess else T_guess
+        T, pt, (last, dT, _) = _newton(self, rho, u, T_guess, 1)
+        # ∂u/∂ρ|T = (p − T ∂p/∂T|ρ)/ρ² (from (∂u/∂v)_T = T(∂p/∂T)_v − p)
+        self._anchor = (rho, u, T, (last[0] - T * dT[0]) / (rho * rho), last[5])
+        return T, pt
 
     def density(self, p: float, T: float) -> float:
         """Density [kg/m^3] at pressure p [Pa] and temperature T [K] (a CoolProp flash, for initial states)."""
@@ -132,7 +152,12 @@ class MetastableFluid:
         self._state = CP.AbstractState("HEOS", fluid.name)
         self._state.specify_phase(CP.iphase_gas)
         self._DT = CP.DmassT_INPUTS
-        self.last_choke = None
+        self._keys = fluid._keys
+        self.last_choke = self.last_throat = None  # warm starts of exchange.realgas_orifice
+
+    def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
+        """:meth:`RealFluid.jet` on the metastable continuation."""
+        return _jet(self._state, self.at(rho, T), T, self._keys, density_too)
 
     def fundamental_derivative(self) -> float:
         """Γ = 1 + (ρ/c)(∂c/∂ρ)_s [-] at the state of the last :meth:`at` call."""
@@ -152,6 +177,44 @@ class MetastableFluid:
         return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
 
 
+def _derivative_keys(CP) -> tuple:
+    """CoolProp's keys for the fields of a :class:`FluidPoint` and of ρ and T."""
+    return (CP.iP, CP.iUmass, CP.iHmass, CP.iSmass, CP.ispeed_sound, CP.iCvmass), CP.iDmass, CP.iT
+
+
+def _jet(st, pt, T, keys, density_too: bool) -> tuple:
+    """(pt, ∂/∂T|ρ, ∂/∂ρ|T or None) of the fields of ``pt``, the FluidPoint of CoolProp state ``st`` at T."""
+    fields, iD, iT = keys
+    d = st.first_partial_deriv
+    cv = pt[5]
+    dT = (d(fields[0], iT, iD), cv, d(fields[2], iT, iD), cv / T, d(fields[4], iT, iD), d(fields[5], iT, iD))
+    return pt, dT, tuple(d(k, iD, iT) for k in fields) if density_too else None
+
+
+def shifted(jet: tuple, d_T: float, d_rho: float = 0.0) -> FluidPoint:
+    """The first-order Taylor step of a :meth:`RealFluid.jet` by d_T [K] and d_ρ [kg/m^3]: exact to
+    O(d_T² + d_ρ²) (used after a Newton step too small to need another evaluation: below 1e-7 relative, the
+    remainder is ~1e-14 relative).
+
+    Examples
+    --------
+    >>> g = IdealGasFluid(287.0, 1.4)
+    >>> round(shifted(g.jet(1.2, 300.0), 1e-5).p / g.at(1.2, 300.0 + 1e-5).p - 1.0, 15)
+    0.0
+    """
+    (p, u, h, s, c, cv), a, b = jet
+    if b is None:
+        return FluidPoint((p + d_T * a[0], u + d_T * a[1], h + d_T * a[2], s + d_T * a[3], c + d_T * a[4],
+                           cv + d_T * a[5]))
+    return FluidPoint((p + d_T * a[0] + d_rho * b[0], u + d_T * a[1] + d_rho * b[1], h + d_T * a[2] + d_rho * b[2],
+                       s + d_T * a[3] + d_rho * b[3], c + d_T * a[4] + d_rho * b[4], cv + d_T * a[5] + d_rho * b[5]))
+
+
+#: A Newton step below this fraction of T (or ρ) is taken without another evaluation: the point is the Taylor
+#: step of the last one (:func:`shifted`); the quadratic remainder is ~1e-14 relative.
+TAYLOR_BELOW = 1e-7
+
+
 def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> tuple:
     r"""Temperature [K] at which ``fluid`` of density ρ has specific internal energy u, by Newton's method, and
     the fluid there (a :class:`FluidPoint`).
@@ -160,7 +223,7 @@ def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> tupl
 
     Parameters
     ----------
-    fluid : RealFluid (or anything with ``at(rho, T) -> FluidPoint``)
+    fluid : RealFluid (or anything with ``jet(rho, T)``, see :meth:`RealFluid.jet`)
     rho : float
         Density [kg/m^3], > 0.
     u : float
@@ -171,8 +234,9 @@ def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> tupl
     Notes
     -----
     u is strictly increasing in T at fixed ρ outside the two-phase dome (cv > 0), so the iteration converges
-    from a nearby guess; steps are limited to halve T at most. It stops when the next step would be below
-    1e-13·T and returns the last point evaluated.
+    from a nearby guess; steps are limited to halve T at most. Once a step is below :data:`TAYLOR_BELOW`·T it
+    is taken and the point is the Taylor step of the last evaluation (:func:`shifted`): T and the fields are then
+    exact to ~1e-14 relative (the quadratic remainder, (∂cv/∂T)/(2cv)·step²).
 
     Examples
     --------
@@ -180,15 +244,7 @@ def temperature_from_energy(fluid, rho: float, u: float, T_guess: float) -> tupl
     >>> round(temperature_from_energy(f, 30.0, f.at(30.0, 80.0).u, 300.0)[0], 9)
     80.0
     """
-    T = T_guess
-    for _ in range(NEWTON_MAX):
-        pt = fluid.at(rho, T)
-        step = (pt[1] - u) / pt[5]
-        if abs(step) <= NEWTON_RTOL * T:
-            return T, pt
-        T = T - step if step < 0.5 * T else 0.5 * T
-    raise RealGasSolveError(f"{getattr(fluid, 'name', fluid)}: no temperature for rho = {rho!r} kg/m^3, "
-                            f"u = {u!r} J/kg (last T = {T!r} K)")
+    return _newton(fluid, rho, u, T_guess, 1)[:2]
 
 
 def isentrope_temperature(fluid, rho: float, s: float, T_guess: float) -> tuple:
@@ -197,8 +253,7 @@ def isentrope_temperature(fluid, rho: float, s: float, T_guess: float) -> tuple:
 
     .. math:: T_{k+1} = T_k - \frac{s(\rho, T_k) - s}{c_v(\rho, T_k)/T_k}
 
-    (∂s/∂T|ρ = cv/T). It stops when the next step would be below 1e-13·T and returns the last point evaluated
-    (its T is then exact to that level). Limits as :func:`temperature_from_energy`.
+    (∂s/∂T|ρ = cv/T). Stopping, limits and accuracy as :func:`temperature_from_energy`.
 
     Examples
     --------
@@ -207,15 +262,21 @@ def isentrope_temperature(fluid, rho: float, s: float, T_guess: float) -> tuple:
     >>> round(isentrope_temperature(f, 300.0, s0, 200.0)[0], 9)
     300.0
     """
-    T = T_guess
+    return _newton(fluid, rho, s, T_guess, 3)[:2]
+
+
+def _newton(fluid, rho: float, target: float, T: float, field: int) -> tuple:
+    """(T, FluidPoint, jet of the last evaluation) where field ``field`` of the fluid at (ρ, T) equals
+    ``target`` (1: u, 3: s; both increase with T at fixed ρ)."""
     for _ in range(NEWTON_MAX):
-        pt = fluid.at(rho, T)
-        step = (pt[3] - s) * T / pt[5]
-        if abs(step) <= NEWTON_RTOL * T:
-            return T, pt
+        jet = fluid.jet(rho, T)
+        step = (jet[0][field] - target) / jet[1][field]
+        if abs(step) <= TAYLOR_BELOW * T:
+            return T - step, shifted(jet, -step), jet
         T = T - step if step < 0.5 * T else 0.5 * T
-    raise RealGasSolveError(f"{getattr(fluid, 'name', fluid)}: no isentrope temperature for rho = {rho!r} "
-                            f"kg/m^3, s = {s!r} J/(kg K) (last T = {T!r} K)")
+    what = "temperature" if field == 1 else "isentrope temperature"
+    raise RealGasSolveError(f"{getattr(fluid, 'name', fluid)}: no {what} for rho = {rho!r} kg/m^3, "
+                            f"{'u' if field == 1 else 's'} = {target!r} (last T = {T!r} K)")
 
 
 class IdealGasFluid:
@@ -244,3 +305,9 @@ class IdealGasFluid:
         R, cv = self.R, self.cv
         return FluidPoint((rho * R * T, cv * T, (cv + R) * T, cv * math.log(T) - R * math.log(rho),
                            math.sqrt(self.gamma * R * T), cv))
+
+    def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
+        """:meth:`RealFluid.jet` in closed form."""
+        pt, R, cv = self.at(rho, T), self.R, self.cv
+        dT = (rho * R, cv, cv + R, cv / T, 0.5 * pt[4] / T, 0.0)
+        return pt, dT, (R * T, 0.0, 0.0, -R / rho, 0.0, 0.0) if density_too else None

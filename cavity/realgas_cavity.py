@@ -18,7 +18,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from .cavity import Cavity
-from .realgas import temperature_from_energy
 
 __all__ = ["RealGasCavity", "RealGasState", "REAL_GAS_ENERGY_MODELS"]
 
@@ -80,15 +79,14 @@ class RealGasCavity(Cavity):
         rate = self.volume.rate(t) if V > self.minimum_volume else 0.0
         fluid = self.fluid
         rho = m / V_eos
-        T, pt = temperature_from_energy(fluid, rho, float(unknowns[ns]) / m, T_guess) if m > 0.0 else (T_guess, None)
+        T, pt = fluid.state(rho, float(unknowns[ns]) / m, T_guess) if m > 0.0 else (T_guess, None)
         p = pt[0] if pt is not None else 0.0
         kappa = rho * pt[4] ** 2 / p if pt is not None else 1.4
         R = p / (rho * T) if pt is not None else 1.0
         mix = _RealMixture(m, R, kappa, m / fluid.molar_mass)
         s = RealGasState(masses, mix, T, V, rate, p, rho, pt[2] if pt is not None else 0.0, fluid)
-        if self.wall is not None:
+        if self.wall is not None:  # its heat flows: wall_heat, called by the right-hand side only
             s.wall_temperature = float(unknowns[ns + 1])
-            self.wall_heat(s, 0.0)
         else:
             s.heat_out = self.heat_loss(T)  # Cavity's h_c·A·(T − T_amb), 0 unless heat_loss
         return s

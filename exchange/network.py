@@ -38,15 +38,17 @@ def _labelled(func, label):
     return func
 
 
-def inflow_convection(net, t: float, states: list, flows: list) -> None:
-    """Give the walls of ``net._inflow_walls`` their heat flows with the mass flow entering each cavity
-    (inflators and exchanges, [kg/s]): :meth:`cavity.realgas_cavity.RealGasCavity.wall_heat`."""
-    for i in net._inflow_walls:
-        cav = net.cavities[i]
-        inflow = sum(inf.mass_flow(t) for inf in cav.inflators)
-        for ex, (mdot, _) in zip(net.exchanges, flows):
-            if (ex.downstream == i and mdot > 0.0) or (ex.upstream == i and mdot < 0.0):
-                inflow += abs(mdot)
+def wall_heat_flows(net, t: float, states: list, flows: list) -> None:
+    """Give the walls of ``net._walls`` their heat flows (:meth:`cavity.realgas_cavity.RealGasCavity.wall_heat`),
+    with the mass flow entering each cavity (inflators and exchanges, [kg/s]) when its inner convection depends on
+    it. Only the right-hand side needs them: states read by switches and outputs skip the film properties."""
+    for i in net._walls:
+        cav, inflow = net.cavities[i], 0.0
+        if cav.has_inflow_convection:
+            inflow = sum(inf.mass_flow(t) for inf in cav.inflators)
+            for ex, (mdot, _) in zip(net.exchanges, flows):
+                if (ex.downstream == i and mdot > 0.0) or (ex.upstream == i and mdot < 0.0):
+                    inflow += abs(mdot)
         cav.wall_heat(states[i], inflow)
 
 
@@ -104,7 +106,9 @@ class Network:
                         for i in range(len(self.cavities))]
         self._inflow_fractions = [[np.asarray(inf.mass_fractions, dtype=float) for inf in c.inflators]
                                   for c in self.cavities]
-        self._inflow_walls = [i for i, c in enumerate(self.cavities) if getattr(c, "has_inflow_convection", False)]
+        self._walls = [i for i, c in enumerate(self.cavities) if getattr(c, "wall", None) is not None]
+        self._keep_states = any(getattr(c, "kind", "gas") == "realgas" for c in self.cavities)
+        self._kept = (None, None)
         self.reset()
 
     def reset(self) -> None:
@@ -154,7 +158,19 @@ class Network:
         return tuple(pts)
 
     def states(self, t: float, y) -> list:
-        """The gas state of every cavity at (t, y)."""
+        """The gas state of every cavity at (t, y). With a real-gas cavity the last (t, y) and its states are
+        kept: the switch functions, evaluated one after the other at each step's end, solve the equation of state
+        once."""
+        if self._keep_states:
+            key = (t, y.tobytes())
+            if key == self._kept[0]:
+                return self._kept[1]
+            out = self._states(t, y)
+            self._kept = (key, out)
+            return out
+        return self._states(t, y)
+
+    def _states(self, t: float, y) -> list:
         out = []
         for i, (cav, k) in enumerate(zip(self.cavities, self.offsets)):
             kind = getattr(cav, "kind", "gas")
@@ -218,8 +234,8 @@ class Network:
         t = self.input_time(t)
         states = self.last_states = self.states(t, y)
         flows = self.exchange_flows(t, states)
-        if self._inflow_walls:  # real-gas walls whose convection depends on the inflow
-            inflow_convection(self, t, states, flows)
+        if self._walls:  # real-gas cavities' walls
+            wall_heat_flows(self, t, states, flows)
         dy = np.zeros_like(y)
         for cav, k, s, c, fractions in zip(self.cavities, self.offsets, states, self._ledger,
                                            self._inflow_fractions):

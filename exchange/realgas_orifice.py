@@ -17,16 +17,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from cavity.realgas import isentrope_temperature
+from cavity.realgas import TAYLOR_BELOW, RealGasSolveError, isentrope_temperature, shifted
 from .discharge import PRESSURE, DischargeTable
 from .orifice import LINEAR_BELOW, orifice_mass_flow
 from .vent import GasPoint
 
 __all__ = ["real_gas_critical_state", "real_gas_mass_flux", "RealGasOrificeLaw", "RealGasPoint", "real_gas_point"]
 
-#: Newton iterations on the choke condition and the throat pressure stop when the density step is below this
-#: fraction [-].
-ITERATION_RTOL = 1e-13
+#: Newton iterations on the choke condition and the throat pressure (at most).
 ITERATION_MAX = 40
 
 
@@ -45,31 +43,45 @@ def _march(fluid, rho0, T0, s0, rho):
     return T, pt
 
 
+def _throat_newton(fluid, rho0, s0, rho, T, residual) -> tuple:
+    r"""(ρ, T, FluidPoint, jet) of the throat: Newton's method in (ρ, T) on s(ρ, T) = s0 and
+    ``residual(point, jet) -> (F, ∂F/∂ρ|T, ∂F/∂T|ρ)`` = 0, from (ρ, T); both unknowns together, one evaluation
+    of the equation of state and its derivatives per iteration. A step below :data:`TAYLOR_BELOW` of ρ and T is
+    taken without another evaluation (the point is the Taylor step of the last, exact to ~1e-14). Steps keep ρ
+    between half its value and the midpoint to ρ0, and T above half its value."""
+    for _ in range(ITERATION_MAX):
+        jet = fluid.jet(rho, T, True)
+        pt, dT, dR = jet
+        F1, F2, J21, J22 = pt[3] - s0, *residual(pt, jet)
+        J11, J12 = dR[3], dT[3]
+        det = J11 * J22 - J12 * J21
+        d_rho, d_T = (J12 * F2 - F1 * J22) / det, (J21 * F1 - J11 * F2) / det
+        if abs(d_rho) <= TAYLOR_BELOW * rho and abs(d_T) <= TAYLOR_BELOW * T:
+            return rho + d_rho, T + d_T, shifted(jet, d_T, d_rho), jet
+        rho_n = min(max(rho + d_rho, 0.5 * rho), 0.5 * (rho + rho0))
+        T = max(T + d_T * (rho_n - rho) / d_rho if d_rho else T + d_T, 0.5 * T)
+        rho = rho_n
+    raise RealGasSolveError(f"{getattr(fluid, 'name', fluid)}: no throat state from rho0 = {rho0!r} kg/m^3 "
+                            f"(last rho = {rho!r}, T = {T!r})")
+
+
 def _sonic_point(fluid, rho0, T0, st0):
-    """(ρ*, T*, FluidPoint) where 2(h0 − h) = c² on the isentrope of st0: :func:`real_gas_critical_state`'s
-    Newton search, f(ρ) = 2(h0 − h) − c² with df/dρ|s = −2Γc²/ρ (dh = c²dρ/ρ; d(c²)/dρ|s = 2(Γ − 1)c²/ρ, Γ the
-    fundamental derivative of gas dynamics)."""
+    """(ρ*, T*, FluidPoint) where 2(h0 − h) = c² on the isentrope of st0 (:func:`real_gas_critical_state`):
+    :func:`_throat_newton` with F = 2(h0 − h) − c², ∂F/∂x = −2(∂h/∂x + c ∂c/∂x)."""
     h0, s0 = st0[2], st0[3]
     last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0) of the previous call: a warm start
     if last is None:
         kappa = rho0 * st0[4] ** 2 / st0[0]
-        last = ((2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0)),)
-    rho = rho0 * last[0]
-    T, pt = _throat(fluid, rho, s0, T0 * last[1]) if len(last) > 2 else _march(fluid, rho0, T0, s0, rho)
-    for _ in range(ITERATION_MAX):
-        c2 = pt[4] ** 2
-        f = 2.0 * (h0 - pt[2]) - c2
-        # below 1e-12 c², f is at the level of the isentrope's Newton tolerance: ρ is the root to ~4e-13 and
-        # G = ρv, stationary there, exact to ~1e-25
-        if abs(f) <= 1e-12 * c2:
-            break
-        rho_n = rho + f * rho / (2.0 * c2 * fluid.fundamental_derivative())  # Γ at (ρ, T): the last at() call
-        rho_n = min(max(rho_n, 0.5 * rho), 0.5 * (rho + rho0))  # stay between the start and the cavity
-        done = abs(rho_n - rho) <= ITERATION_RTOL * rho
-        rho = rho_n
-        T, pt = _throat(fluid, rho, s0, T)
-        if done:
-            break
+        rho = rho0 * (2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0))
+        T = _march(fluid, rho0, T0, s0, rho)[0]
+    else:
+        rho, T = rho0 * last[0], T0 * last[1]
+
+    def choke(pt, jet):
+        c, (_, a, b) = pt[4], jet
+        return 2.0 * (h0 - pt[2]) - c * c, -2.0 * (b[2] + c * b[4]), -2.0 * (a[2] + c * a[4])
+
+    rho, T, pt, _ = _throat_newton(fluid, rho0, s0, rho, T, choke)
     return rho, T, pt
 
 
@@ -107,7 +119,7 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     (0.528282, 0.833333333333)
     """
     fluid = getattr(fluid, "metastable", fluid)  # the expansion is frozen (cavity.realgas.MetastableFluid)
-    st0 = fluid.at(rho0, T0)
+    st0 = _stagnation(fluid, rho0, T0)[0]
     h0 = st0[2]
     rho_b, T_b, pb = _sonic_point(fluid, rho0, T0, st0)
     v = math.sqrt(max(2.0 * (h0 - pb[2]), 0.0))
@@ -121,41 +133,69 @@ QUADRATURE_ABOVE = 0.99
 _GAUSS3 = ((-0.7745966692414834, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.7745966692414834, 5.0 / 9.0))
 
 
-def _enthalpy_drop(fluid, rho0, T0, s0, rho_t, T_t):
+def _stagnation(fluid, rho0, T0) -> tuple:
+    """The jet (:meth:`cavity.realgas.RealFluid.jet`, with density derivatives) of the stagnation state, kept
+    for the last (ρ0, T0): the flux, its choke point and the choke switch ask for the same state."""
+    kept = getattr(fluid, "_stagnation", None)
+    if kept is not None and kept[0] == rho0 and kept[1] == T0:
+        return kept[2]
+    jet = fluid.jet(rho0, T0, True)
+    try:
+        fluid._stagnation = (rho0, T0, jet)
+    except AttributeError:  # a fluid that keeps nothing
+        pass
+    return jet
+
+
+def _isentrope_slope(jet) -> float:
+    """dT/dρ along the isentrope [K m^3/kg] at a jet's point: −(∂s/∂ρ|T)/(∂s/∂T|ρ)."""
+    return -jet[2][3] / jet[1][3]
+
+
+def _enthalpy_drop(fluid, rho0, T0, stag, rho_t, T_t, throat):
     r"""h0 − h(ρ_t) = ∫ c²/ρ dρ from ρ_t to ρ0 along the isentrope s0 (dh = dp/ρ, dp = c² dρ), by 3-point
     Gauss–Legendre quadrature [J/kg] (the interval is short, p_t ≥ 0.99 p0, and the integrand smooth: the rule's
-    error, ~(Δρ/2ρ)^6, is below 1e-13)."""
-    half, mid, total = 0.5 * (rho0 - rho_t), 0.5 * (rho0 + rho_t), 0.0
+    error, ~(Δρ/2ρ)^6, is below 1e-13). Each node's temperature starts from the cubic Hermite interpolant of T(ρ)
+    with the isentrope's slopes at both ends (the ``stag`` and ``throat`` jets): one evaluation each, mostly."""
+    s0, d = stag[0][3], rho0 - rho_t
+    m_t, m_0 = _isentrope_slope(throat) * d, _isentrope_slope(stag) * d
+    half, mid, total = 0.5 * d, 0.5 * (rho0 + rho_t), 0.0
     for x, w in _GAUSS3:
-        rho = mid + half * x
-        pt = isentrope_temperature(fluid, rho, s0, T_t + (T0 - T_t) * (rho - rho_t) / (rho0 - rho_t))[1]
+        rho, z = mid + half * x, 0.5 * (1.0 + x)  # z from 0 (throat) to 1 (stagnation)
+        guess = ((2 * z ** 3 - 3 * z * z + 1) * T_t + (z ** 3 - 2 * z * z + z) * m_t + (3 * z * z - 2 * z ** 3) * T0
+                 + (z ** 3 - z * z) * m_0)
+        pt = isentrope_temperature(fluid, rho, s0, guess)[1]
         total += w * pt[4] ** 2 / rho
     return half * total
 
 
-def _flux_at_pressure(fluid, rho0, T0, st0, p_t):
-    """(G, dG/dp) at throat pressure p_t >= p* on the isentrope of st0: Newton on p(ρ) = p_t, dp/dρ|s = c²."""
-    h0, s0 = st0[2], st0[3]
-    kappa = rho0 * st0[4] ** 2 / st0[0]
-    rho = rho0 * (p_t / st0[0]) ** (1.0 / kappa)
-    last = getattr(fluid, "last_choke", None)  # T between T0 and T* in proportion to p0 − p_t, or walk down
+def _subsonic_guess(fluid, rho0, T0, st0, p_t) -> tuple:
+    """(ρ, T) to start the throat at p_t from: the previous subsonic throat's ratios carried along the isentrope
+    by its local exponents (ρ ∝ p^(1/κ), T ∝ p^β), else ρ0·(p_t/p0)^(1/κ0) and T between T0 and the last T* (or
+    walked down the isentrope on a first call)."""
+    q, last = p_t / st0[0], getattr(fluid, "last_throat", None)
     if last is not None:
-        T = T0 * (1.0 - (1.0 - last[1]) * (1.0 - p_t / st0[0]) / (1.0 - last[2]))
-    else:
-        T = _march(fluid, rho0, T0, s0, rho)[0]
-    for _ in range(ITERATION_MAX):
-        T, pt = _throat(fluid, rho, s0, T)
-        step = (pt[0] - p_t) / pt[4] ** 2
-        rho -= step
-        if abs(step) <= ITERATION_RTOL * rho:
-            break
-    T, pt = _throat(fluid, rho, s0, T)
-    T -= (pt[3] - s0) * T / pt[5]  # one Newton step more: h is differenced below, T must be exact, not 1e-13
-    pt = fluid.at(rho, T)
-    r, c2 = p_t - pt[0], pt[4] ** 2  # the Newton residual, removed to first order (dh = dp/ρ, dρ = dp/c²)
-    drop = h0 - pt[2] if p_t < QUADRATURE_ABOVE * st0[0] else _enthalpy_drop(fluid, rho0, T0, s0, rho, T)
-    v2 = 2.0 * drop - 2.0 * r / rho
-    rho += r / c2
+        r = q / last[0]
+        return rho0 * last[1] * r ** last[3], T0 * last[2] * r ** last[4]
+    rho = rho0 * q ** (st0[0] / (rho0 * st0[4] ** 2))
+    choke = getattr(fluid, "last_choke", None)
+    if choke is not None:
+        return rho, T0 * (1.0 - (1.0 - choke[1]) * (1.0 - q) / (1.0 - choke[2]))
+    return rho, _march(fluid, rho0, T0, st0[3], rho)[0]
+
+
+def _flux_at_pressure(fluid, rho0, T0, stag, p_t):
+    """(G, dG/dp) at throat pressure p_t >= p* on the isentrope of the ``stag`` jet: :func:`_throat_newton` with
+    F = p − p_t."""
+    st0 = stag[0]
+    rho, T = _subsonic_guess(fluid, rho0, T0, st0, p_t)
+    rho, T, pt, jet = _throat_newton(fluid, rho0, st0[3], rho, T,
+                                     lambda pt, jet: (pt[0] - p_t, jet[2][0], jet[1][0]))
+    c2 = pt[4] ** 2
+    beta = pt[0] * _isentrope_slope(jet) / (c2 * T)  # (∂ln T/∂ln p)_s = (p/T)(dT/dρ)_s/c²
+    fluid.last_throat = (p_t / st0[0], rho / rho0, T / T0, pt[0] / (rho * c2), beta)
+    drop = st0[2] - pt[2] if p_t < QUADRATURE_ABOVE * st0[0] else _enthalpy_drop(fluid, rho0, T0, stag, rho, T, jet)
+    v2 = 2.0 * drop
     v = math.sqrt(max(v2, 0.0))
     return rho * v, (v2 - c2) / (c2 * v) if v > 0.0 else math.inf
 
@@ -196,25 +236,25 @@ def real_gas_mass_flux(fluid, rho0: float, T0: float, p_down: float) -> float:
     0.046671
     """
     fluid = getattr(fluid, "metastable", fluid)  # the expansion is frozen (cavity.realgas.MetastableFluid)
-    st0 = fluid.at(rho0, T0)
-    p0 = st0[0]
+    stag = _stagnation(fluid, rho0, T0)
+    p0 = stag[0][0]
     if p_down >= p0:
         return 0.0
     s = (p0 - p_down) / p0
     if s < LINEAR_BELOW:
         d = LINEAR_BELOW
-        f, dGdp = _flux_at_pressure(fluid, rho0, T0, st0, p0 * (1.0 - d))
+        f, dGdp = _flux_at_pressure(fluid, rho0, T0, stag, p0 * (1.0 - d))
         fp = -p0 * dGdp
         return s * ((2.0 * f - fp * d) / d + s * (fp * d - f) / (d * d))
     last = getattr(fluid, "last_choke", None)
     if last is not None and p_down > last[2] * p0:  # likely subsonic: a throat at p_down with v <= c proves it
-        G, dGdp = _flux_at_pressure(fluid, rho0, T0, st0, p_down)
+        G, dGdp = _flux_at_pressure(fluid, rho0, T0, stag, p_down)
         if dGdp <= 0.0:
             return G
     p_star, G_star, _, _ = real_gas_critical_state(fluid, rho0, T0)
     if p_down <= p_star:
         return G_star
-    return _flux_at_pressure(fluid, rho0, T0, st0, p_down)[0]
+    return _flux_at_pressure(fluid, rho0, T0, stag, p_down)[0]
 
 
 @dataclass(frozen=True)
