@@ -103,9 +103,9 @@ class RealFluid:
         return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
 
     def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
-        """:meth:`at` and the partial derivatives of its six fields: ``(point, d/dT at fixed ρ, d/dρ at fixed T or
-        None)`` (CoolProp's analytic derivatives of the equation of state, 0.15 µs each)."""
-        return _jet(self._state, self.at(rho, T), T, self._keys, density_too)
+        """:meth:`at` and the partial derivatives of its fields: ``(point, d/dT at fixed ρ, d/dρ at fixed T or
+        None)`` (:func:`_jet`: two or four of CoolProp's analytic derivatives, 0.15 µs each)."""
+        return _jet(self._state, self.at(rho, T), rho, T, self._keys, density_too)
 
     def state(self, rho: float, u: float, T_guess: float) -> tuple:
         """(T [K], FluidPoint) at density ρ [kg/m^3] and specific energy u [J/kg]: :func:`temperature_from_energy`
@@ -157,7 +157,7 @@ class MetastableFluid:
 
     def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
         """:meth:`RealFluid.jet` on the metastable continuation."""
-        return _jet(self._state, self.at(rho, T), T, self._keys, density_too)
+        return _jet(self._state, self.at(rho, T), rho, T, self._keys, density_too)
 
     def fundamental_derivative(self) -> float:
         """Γ = 1 + (ρ/c)(∂c/∂ρ)_s [-] at the state of the last :meth:`at` call."""
@@ -178,23 +178,34 @@ class MetastableFluid:
 
 
 def _derivative_keys(CP) -> tuple:
-    """CoolProp's keys for the fields of a :class:`FluidPoint` and of ρ and T."""
-    return (CP.iP, CP.iUmass, CP.iHmass, CP.iSmass, CP.ispeed_sound, CP.iCvmass), CP.iDmass, CP.iT
+    """CoolProp's keys of p, c, ρ and T."""
+    return CP.iP, CP.ispeed_sound, CP.iDmass, CP.iT
 
 
-def _jet(st, pt, T, keys, density_too: bool) -> tuple:
-    """(pt, ∂/∂T|ρ, ∂/∂ρ|T or None) of the fields of ``pt``, the FluidPoint of CoolProp state ``st`` at T."""
-    fields, iD, iT = keys
+def _jet(st, pt, rho, T, keys, density_too: bool) -> tuple:
+    r"""(pt, ∂/∂T|ρ, ∂/∂ρ|T or None) of the fields (p, u, h, s, c, cv) of ``pt``, the FluidPoint of CoolProp
+    state ``st`` at (ρ, T): CoolProp's ∂p and ∂c, the rest by thermodynamic identities,
+
+    .. math:: u_T = c_v,\ h_T = c_v + p_T/\rho,\ s_T = c_v/T,\ u_\rho = (p - T p_T)/\rho^2,\
+              h_\rho = u_\rho + p_\rho/\rho - p/\rho^2,\ s_\rho = -p_T/\rho^2
+
+    (Maxwell's (∂s/∂v)_T = (∂p/∂T)_v); cv is held (its derivatives are not needed: it is only a Newton slope)."""
+    iP, iC, iD, iT = keys
     d = st.first_partial_deriv
-    cv = pt[5]
-    dT = (d(fields[0], iT, iD), cv, d(fields[2], iT, iD), cv / T, d(fields[4], iT, iD), d(fields[5], iT, iD))
-    return pt, dT, tuple(d(k, iD, iT) for k in fields) if density_too else None
+    p, cv = pt[0], pt[5]
+    p_T = d(iP, iT, iD)
+    dT = (p_T, cv, cv + p_T / rho, cv / T, d(iC, iT, iD), 0.0)
+    if not density_too:
+        return pt, dT, None
+    p_rho, r2 = d(iP, iD, iT), rho * rho
+    u_rho = (p - T * p_T) / r2
+    return pt, dT, (p_rho, u_rho, u_rho + p_rho / rho - p / r2, -p_T / r2, d(iC, iD, iT), 0.0)
 
 
 def shifted(jet: tuple, d_T: float, d_rho: float = 0.0) -> FluidPoint:
     """The first-order Taylor step of a :meth:`RealFluid.jet` by d_T [K] and d_ρ [kg/m^3]: exact to
     O(d_T² + d_ρ²) (used after a Newton step too small to need another evaluation: below 1e-7 relative, the
-    remainder is ~1e-14 relative).
+    remainder is ~1e-14 relative), except cv, held at the evaluated point's (first order: a Newton slope only).
 
     Examples
     --------

@@ -60,6 +60,12 @@ class RealGasCavity(Cavity):
     def n_unknowns(self) -> int:
         return len(self.initial_masses) + (3 if self.wall is not None else 1)
 
+    @property
+    def n_coupled(self) -> int:
+        """The leading unknowns the right-hand side depends on: masses, U and the wall temperature (not the
+        heat to ambient, a ledger entry)."""
+        return len(self.initial_masses) + (2 if self.wall is not None else 1)
+
     def initial_unknowns(self, gas=None) -> np.ndarray:
         m = np.asarray(self.initial_masses, dtype=float)
         V = max(self.total_volume(0.0), self.minimum_volume)

@@ -109,6 +109,11 @@ class Network:
         self._walls = [i for i, c in enumerate(self.cavities) if getattr(c, "wall", None) is not None]
         self._keep_states = any(getattr(c, "kind", "gas") == "realgas" for c in self.cavities)
         self._kept = (None, None)
+        #: the unknowns the right-hand side depends on (cavity states; not the ledger), for a Jacobian by
+        #: differences that skips the rest (cavity.integration); real-gas networks only, ideal ones unchanged
+        self.coupled_unknowns = [k + i for cav, k in zip(self.cavities, self.offsets)
+                                 for i in range(getattr(cav, "n_coupled", cav.n_unknowns))] \
+            if self._keep_states and type(self) is Network else None
         self.reset()
 
     def reset(self) -> None:
