@@ -79,7 +79,7 @@ class RealGasCavity(Cavity):
         state)."""
         ns = len(self.initial_masses)
         masses = np.maximum(unknowns[:ns], 0.0)
-        m = float(masses.sum())
+        m = float(masses[0]) if ns == 1 else float(masses.sum())
         V = self.volume(t) + self.added_volume
         V_eos = V if V > self.minimum_volume else self.minimum_volume
         rate = self.volume.rate(t) if V > self.minimum_volume else 0.0

@@ -106,6 +106,8 @@ class Network:
                         for i in range(len(self.cavities))]
         self._inflow_fractions = [[np.asarray(inf.mass_fractions, dtype=float) for inf in c.inflators]
                                   for c in self.cavities]
+        self._layout = [(cav, k, getattr(cav, "kind", "gas"), cav.n_unknowns)
+                        for cav, k in zip(self.cavities, self.offsets)]
         self._walls = [i for i, c in enumerate(self.cavities) if getattr(c, "wall", None) is not None]
         self._keep_states = any(getattr(c, "kind", "gas") == "realgas" for c in self.cavities)
         self._kept = (None, None)
@@ -177,13 +179,12 @@ class Network:
 
     def _states(self, t: float, y) -> list:
         out = []
-        for i, (cav, k) in enumerate(zip(self.cavities, self.offsets)):
-            kind = getattr(cav, "kind", "gas")
+        for i, (cav, k, kind, n) in enumerate(self._layout):
             if kind == "hydraulic":
                 out.append(cav.state(t, y[k:k + 1]))
                 continue
-            s = (cav.state(t, y[k:k + cav.n_unknowns], self._T_guess[i]) if kind == "realgas" else
-                 CavityState.of(cav, self.gas, t, y[k:k + cav.n_unknowns], self._T_guess[i]))
+            s = (cav.state(t, y[k:k + n], self._T_guess[i]) if kind == "realgas" else
+                 CavityState.of(cav, self.gas, t, y[k:k + n], self._T_guess[i]))
             self._T_guess[i] = s.temperature
             out.append(s)
         return out

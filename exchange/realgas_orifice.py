@@ -48,7 +48,8 @@ def _throat_newton(fluid, rho0, s0, rho, T, residual) -> tuple:
     ``residual(point, jet) -> (F, ∂F/∂ρ|T, ∂F/∂T|ρ)`` = 0, from (ρ, T); both unknowns together, one evaluation
     of the equation of state and its derivatives per iteration. A step below :data:`TAYLOR_BELOW` of ρ and T is
     taken without another evaluation (the point is the Taylor step of the last, exact to ~1e-14). Steps keep ρ
-    between half its value and the midpoint to ρ0, and T above half its value."""
+    between half its value and the midpoint to ρ0, and T above half its value. Also returns the last Jacobian
+    (J11, J12, J21, J22) of (s, F) in (ρ, T), for :func:`_predicted`."""
     for _ in range(ITERATION_MAX):
         jet = fluid.jet(rho, T, True)
         pt, dT, dR = jet
@@ -57,7 +58,7 @@ def _throat_newton(fluid, rho0, s0, rho, T, residual) -> tuple:
         det = J11 * J22 - J12 * J21
         d_rho, d_T = (J12 * F2 - F1 * J22) / det, (J21 * F1 - J11 * F2) / det
         if abs(d_rho) <= TAYLOR_BELOW * rho and abs(d_T) <= TAYLOR_BELOW * T:
-            return rho + d_rho, T + d_T, shifted(jet, d_T, d_rho), jet
+            return rho + d_rho, T + d_T, shifted(jet, d_T, d_rho), jet, (J11, J12, J21, J22)
         rho_n = min(max(rho + d_rho, 0.5 * rho), 0.5 * (rho + rho0))
         T = max(T + d_T * (rho_n - rho) / d_rho if d_rho else T + d_T, 0.5 * T)
         rho = rho_n
@@ -65,12 +66,26 @@ def _throat_newton(fluid, rho0, s0, rho, T, residual) -> tuple:
                             f"(last rho = {rho!r}, T = {T!r})")
 
 
+def _predicted(last, rho0, ds0, dF) -> tuple | None:
+    """(ρ, T) of the throat after the stagnation entropy changed by ds0 and the target of F by dF since the
+    throat ``last`` = (ρ, T, s0, target, (J11, J12, J21, J22)): the implicit-function step J⁻¹·(ds0, dF)
+    (s − s0 = 0 and F = target fix the throat, so J·dx = (ds0, dF)), exact to first order; None if it leaves
+    0 < ρ < ρ0, T > 0."""
+    rho, T, _, _, (J11, J12, J21, J22) = last
+    det = J11 * J22 - J12 * J21
+    rho, T = rho + (J22 * ds0 - J12 * dF) / det, T + (J11 * dF - J21 * ds0) / det
+    return (rho, T) if 0.0 < rho < rho0 and T > 0.0 else None
+
+
 def _sonic_point(fluid, rho0, T0, st0):
     """(ρ*, T*, FluidPoint) where 2(h0 − h) = c² on the isentrope of st0 (:func:`real_gas_critical_state`):
     :func:`_throat_newton` with F = 2(h0 − h) − c², ∂F/∂x = −2(∂h/∂x + c ∂c/∂x)."""
     h0, s0 = st0[2], st0[3]
-    last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0) of the previous call: a warm start
-    if last is None:
+    last = getattr(fluid, "last_choke", None)  # (ρ*/ρ0, T*/T0, p*/p0, the throat for _predicted)
+    guess = _predicted(last[3], rho0, s0 - last[3][2], 2.0 * (last[3][3] - h0)) if last is not None else None
+    if guess is not None:  # F = 2(h0 − h) − c² = 0: a change of h0 is one of −2·h0 in the target
+        rho, T = guess
+    elif last is None:
         kappa = rho0 * st0[4] ** 2 / st0[0]
         rho = rho0 * (2.0 / (kappa + 1.0)) ** (1.0 / (kappa - 1.0))
         T = _march(fluid, rho0, T0, s0, rho)[0]
@@ -81,8 +96,8 @@ def _sonic_point(fluid, rho0, T0, st0):
         c, (_, a, b) = pt[4], jet
         return 2.0 * (h0 - pt[2]) - c * c, -2.0 * (b[2] + c * b[4]), -2.0 * (a[2] + c * a[4])
 
-    rho, T, pt, _ = _throat_newton(fluid, rho0, s0, rho, T, choke)
-    return rho, T, pt
+    rho, T, pt, _, J = _throat_newton(fluid, rho0, s0, rho, T, choke)
+    return rho, T, pt, (rho, T, s0, h0, J)
 
 
 def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
@@ -121,9 +136,9 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     fluid = getattr(fluid, "metastable", fluid)  # the expansion is frozen (cavity.realgas.MetastableFluid)
     st0 = _stagnation(fluid, rho0, T0)[0]
     h0 = st0[2]
-    rho_b, T_b, pb = _sonic_point(fluid, rho0, T0, st0)
+    rho_b, T_b, pb, throat = _sonic_point(fluid, rho0, T0, st0)
     v = math.sqrt(max(2.0 * (h0 - pb[2]), 0.0))
-    fluid.last_choke = (rho_b / rho0, T_b / T0, pb[0] / st0[0])
+    fluid.last_choke = (rho_b / rho0, T_b / T0, pb[0] / st0[0], throat)
     return pb[0], rho_b * v, rho_b, T_b
 
 
@@ -170,13 +185,12 @@ def _enthalpy_drop(fluid, rho0, T0, stag, rho_t, T_t, throat):
 
 
 def _subsonic_guess(fluid, rho0, T0, st0, p_t) -> tuple:
-    """(ρ, T) to start the throat at p_t from: the previous subsonic throat's ratios carried along the isentrope
-    by its local exponents (ρ ∝ p^(1/κ), T ∝ p^β), else ρ0·(p_t/p0)^(1/κ0) and T between T0 and the last T* (or
-    walked down the isentrope on a first call)."""
+    """(ρ, T) to start the throat at p_t from: the previous subsonic throat moved by :func:`_predicted`, else
+    ρ0·(p_t/p0)^(1/κ0) and T between T0 and the last T* (or walked down the isentrope on a first call)."""
     q, last = p_t / st0[0], getattr(fluid, "last_throat", None)
-    if last is not None:
-        r = q / last[0]
-        return rho0 * last[1] * r ** last[3], T0 * last[2] * r ** last[4]
+    guess = _predicted(last, rho0, st0[3] - last[2], p_t - last[3]) if last is not None else None
+    if guess is not None:
+        return guess
     rho = rho0 * q ** (st0[0] / (rho0 * st0[4] ** 2))
     choke = getattr(fluid, "last_choke", None)
     if choke is not None:
@@ -189,11 +203,10 @@ def _flux_at_pressure(fluid, rho0, T0, stag, p_t):
     F = p − p_t."""
     st0 = stag[0]
     rho, T = _subsonic_guess(fluid, rho0, T0, st0, p_t)
-    rho, T, pt, jet = _throat_newton(fluid, rho0, st0[3], rho, T,
-                                     lambda pt, jet: (pt[0] - p_t, jet[2][0], jet[1][0]))
+    rho, T, pt, jet, J = _throat_newton(fluid, rho0, st0[3], rho, T,
+                                        lambda pt, jet: (pt[0] - p_t, jet[2][0], jet[1][0]))
     c2 = pt[4] ** 2
-    beta = pt[0] * _isentrope_slope(jet) / (c2 * T)  # (∂ln T/∂ln p)_s = (p/T)(dT/dρ)_s/c²
-    fluid.last_throat = (p_t / st0[0], rho / rho0, T / T0, pt[0] / (rho * c2), beta)
+    fluid.last_throat = (rho, T, st0[3], p_t, J)
     drop = st0[2] - pt[2] if p_t < QUADRATURE_ABOVE * st0[0] else _enthalpy_drop(fluid, rho0, T0, stag, rho, T, jet)
     v2 = 2.0 * drop
     v = math.sqrt(max(v2, 0.0))
