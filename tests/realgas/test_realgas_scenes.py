@@ -105,3 +105,17 @@ def test_bad_real_gas_keys_name_the_key(tmp_path, old, new, where):
     with pytest.raises(SceneError) as exc:
         load_scene(path)
     assert where in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_ledger_unknowns_do_not_enter_the_right_hand_side(filling_run):
+    """The stiff Jacobian is differenced over ``coupled_unknowns`` only (cavity.integration): every other
+    unknown (ledger integrals, heat to ambient) must leave the right-hand side unchanged, bit for bit."""
+    net = filling_run.model.network
+    y = filling_run.trajectory(20.0)
+    cols = set(net.coupled_unknowns)
+    assert cols and len(cols) < y.size
+    f0 = net.rhs(20.0, y)
+    for j in set(range(y.size)) - cols:
+        y1 = y.copy()
+        y1[j] = 1e3 * (abs(y1[j]) + 1.0)
+        assert np.array_equal(net.rhs(20.0, y1), f0), j

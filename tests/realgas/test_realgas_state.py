@@ -107,3 +107,38 @@ def test_metastable_view_is_the_fluid_where_single_phase_and_refuses_the_dome():
     with pytest.raises(RealGasSolveError, match="two-phase"):
         f.at(360.0, 280.0)
     assert f.metastable.at(100.0, 270.0).c > 0.0  # supersaturated vapour: the gas branch continued
+
+
+@pytest.mark.parametrize("fluid,rho,T", [("Nitrogen", 200.0, 250.0), ("Nitrogen", 5.0, 300.0),
+                                         ("CarbonDioxide", 400.0, 320.0), ("Helium", 30.0, 80.0)])
+def test_jet_derivatives_equal_central_differences(fluid, rho, T):
+    """The jet's ∂/∂T|ρ and ∂/∂ρ|T of p, u, h, s and c (two of CoolProp's derivatives and the identities
+    u_T = cv, h_T = cv + p_T/ρ, s_T = cv/T, u_ρ = (p − T p_T)/ρ², h_ρ = u_ρ + p_ρ/ρ − p/ρ², s_ρ = −p_T/ρ²)
+    against central differences of HEOS evaluations (truncation and round-off below 1e-8 at these steps, CO2
+    near its critical point included): <= 1e-7."""
+    f = RealFluid(fluid)
+    _, dT, dR = f.jet(rho, T, True)
+    eT, eR = 1e-5 * T, 1e-6 * rho
+    for k in range(5):
+        fd_T = (f.at(rho, T + eT)[k] - f.at(rho, T - eT)[k]) / (2 * eT)
+        fd_R = (f.at(rho + eR, T)[k] - f.at(rho - eR, T)[k]) / (2 * eR)
+        assert dT[k] == pytest.approx(fd_T, rel=1e-7, abs=1e-9 * abs(f.at(rho, T)[k]) / T), k
+        assert dR[k] == pytest.approx(fd_R, rel=1e-7, abs=1e-9 * abs(f.at(rho, T)[k]) / rho), k
+
+
+def test_state_from_the_predictor_equals_a_cold_newton():
+    """RealFluid.state (first-order prediction off the previous call, a Taylor last step) along a path with
+    jumps of up to 30 % equals temperature_from_energy started far away, and HEOS's (ρ, u) flash, to 1e-12."""
+    f, g = RealFluid("Nitrogen"), RealFluid("Nitrogen")
+    heos = CP.AbstractState("HEOS", "Nitrogen")
+    rng = np.random.default_rng(3)
+    rho, T = 150.0, 280.0
+    for _ in range(60):
+        rho *= 1.0 + 0.3 * (rng.random() - 0.5) * (rng.random() < 0.2) + 1e-4 * rng.standard_normal()
+        T *= 1.0 + 1e-3 * rng.standard_normal()
+        u = g.at(rho, T).u
+        T1, pt = f.state(rho, u, 300.0)
+        T2, ref = temperature_from_energy(g, rho, u, 500.0)
+        assert T1 == pytest.approx(T2, rel=1e-12) and pt.p == pytest.approx(ref.p, rel=1e-12)
+        heos.update(CP.DmassUmass_INPUTS, rho, u - f.offset)
+        assert pt.p == pytest.approx(heos.p(), rel=1e-10)
