@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from .jacobian import IMPLICIT, coupled_jacobian
 from .progress import ProgressBar
 
 __all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS", "stiffness_advice"]
@@ -294,31 +295,6 @@ def _directions(system, events, t, y, last, near) -> list:
     return dirs
 
 
-#: Methods that use a Jacobian (LSODA in its stiff mode).
-_IMPLICIT = ("LSODA", "BDF", "Radau")
-
-
-def _coupled_jacobian(system, stats: dict):
-    """∂f/∂y by forward differences over ``system.coupled_unknowns`` only, the unknowns the right-hand side
-    depends on (the others, ledger integrals, have zero columns: exactly, not approximately); the right-hand
-    sides it costs are added to ``stats["rhs_calls"]``. The step is √ε·max(|y_j|, 1e-6)."""
-    cols = np.asarray(system.coupled_unknowns, dtype=int)
-
-    def jac(t, y):
-        y = np.asarray(y, dtype=float)
-        f0 = np.asarray(system.rhs(t, y))
-        J = np.zeros((y.size, y.size))
-        for j in cols:
-            h = 1.4901161193847656e-08 * max(abs(y[j]), 1e-6)
-            yj = y.copy()
-            yj[j] += h
-            J[:, j] = (np.asarray(system.rhs(t, yj)) - f0) / (yj[j] - y[j])
-        stats["rhs_calls"] += 1 + cols.size
-        return J
-
-    return jac
-
-
 def _watched(g, direction):
     def event(t, y):
         return g(t, y)
@@ -382,7 +358,7 @@ def _advance(system, t, y, stop, options, traj):
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
     events = events + [_step_budget(system, remaining, options, traj.deadline)]
-    extra = {"jac": _coupled_jacobian(system, traj.stats)} if options.method in _IMPLICIT and \
+    extra = {"jac": coupled_jacobian(system, traj.stats)} if options.method in IMPLICIT and \
         getattr(system, "coupled_unknowns", None) is not None else {}
     try:
         rhs = system.segment_rhs(stop) if options.compiled is not False and hasattr(system, "segment_rhs") \

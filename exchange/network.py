@@ -21,6 +21,7 @@ from cavity.cavity import CavityState
 from .activation import activated_area, arm_pop_vents
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 from .orifice import LINEAR_BELOW
+from .wall_heat import wall_heat_flows
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
@@ -36,20 +37,6 @@ _LIQUID = np.ones(1)
 def _labelled(func, label):
     func.label = label
     return func
-
-
-def wall_heat_flows(net, t: float, states: list, flows: list) -> None:
-    """Give the walls of ``net._walls`` their heat flows (:meth:`cavity.realgas_cavity.RealGasCavity.wall_heat`),
-    with the mass flow entering each cavity (inflators and exchanges, [kg/s]) when its inner convection depends on
-    it. Only the right-hand side needs them: states read by switches and outputs skip the film properties."""
-    for i in net._walls:
-        cav, inflow = net.cavities[i], 0.0
-        if cav.has_inflow_convection:
-            inflow = sum(inf.mass_flow(t) for inf in cav.inflators)
-            for ex, (mdot, _) in zip(net.exchanges, flows):
-                if (ex.downstream == i and mdot > 0.0) or (ex.upstream == i and mdot < 0.0):
-                    inflow += abs(mdot)
-        cav.wall_heat(states[i], inflow)
 
 
 def gas_point(state) -> GasPoint:
