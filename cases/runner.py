@@ -96,7 +96,7 @@ def refine_peak(ts: np.ndarray, ps: np.ndarray, pressure) -> tuple[float, float]
 def peak_pressure(model: Model, traj: Trajectory, i: int) -> tuple[float, float]:
     """Largest pressure of cavity i and its time, refined on the dense output (independent of output times)."""
     ts = peak_candidates(traj)
-    ps = np.array([pressure_at(model, traj, i, t) for t in ts])
+    ps = np.array([model.network.states(t, y)[i].pressure for t, y in zip(ts, traj.sample(ts))])
     return refine_peak(ts, ps, lambda t: pressure_at(model, traj, i, t))
 
 

@@ -63,10 +63,25 @@ def _read(path: Path) -> dict:
         return {}
 
 
+_SHIPPED_PARSED: list = [None, {}]  # (path, mtime, size) and the parsed shipped table
+
+
+def _shipped() -> dict:
+    """The shipped table, parsed once per process (again if the file changes); not to be modified."""
+    try:
+        st = SHIPPED.stat()
+    except OSError:
+        return {}
+    key = (str(SHIPPED), st.st_mtime_ns, st.st_size)
+    if _SHIPPED_PARSED[0] != key:
+        _SHIPPED_PARSED[:] = [key, _read(SHIPPED)]
+    return _SHIPPED_PARSED[1]
+
+
 def lookup(key: str) -> dict | None:
     """The stored fit (``molar_mass``, ``breaks``, ``pieces``, ``source``) of ``key`` for the installed CoolProp, or
     None."""
-    shipped = _read(SHIPPED)
+    shipped = _shipped()
     if shipped.get("coolprop") == coolprop_version() and key in shipped.get("fits", {}):
         return shipped["fits"][key]
     path = user_cache_file()
