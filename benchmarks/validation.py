@@ -7,8 +7,8 @@ discharge (p, mean gas T) and air filling from 3.7 kPa (no measured history: ven
 For each: ventsim's error against the measurement (pressure [bar] and gas temperature [K], RMS and max over the
 measured points, the model interpolated linearly onto them; the N2 gas temperature against the mean of its two
 probes; the wall against the mean of the inner and outer probes), the minimum gas temperature computed and
-measured, and CPU and wall times: ventsim build + run (best of 5, CoolProp's fluid loaded once beforehand) and
-HydDown's HydDown(setup) + run() (best of 3, in its own interpreter); on a shared machine the CPU times are the
+measured, and CPU and wall times: ventsim build + run (best of 10, CoolProp's fluid loaded once beforehand) and
+HydDown's HydDown(setup) + run() (best of 5, in its own interpreter); on a shared machine the CPU times are the
 steadier figure. HydDown runs when an interpreter that imports it is
 found (HYDDOWN_PYTHON, /work/venv-hyddown/bin/python, or this one); its rows are skipped otherwise. Plots of
 measured against computed p and T (and wall T) go to OUT/validation.png (default out/benchmarks).
@@ -68,7 +68,7 @@ def measured(stem, gas, wall) -> dict:
     return {k: v for k, v in out.items() if v is not None}
 
 
-def run_ventsim(scene: str, repeats: int = 5) -> dict:
+def run_ventsim(scene: str, repeats: int = 10) -> dict:
     path = HERE / f"{scene}.toml"
     build_model(load_scene(path))  # loads CoolProp's fluid and fits the species once
     wall = cpu = float("inf")
@@ -90,7 +90,7 @@ def hyddown_python() -> str | None:
 
 
 def run_hyddown(exe: str, setup: str) -> dict:
-    out = subprocess.run([exe, str(ROOT / "benchmarks" / "_hyddown_run.py"), str(HERE / "hyddown" / setup)],
+    out = subprocess.run([exe, str(ROOT / "benchmarks" / "_hyddown_run.py"), str(HERE / "hyddown" / setup), "5"],
                          capture_output=True, text=True, check=True).stdout
     d = json.loads(out.strip().splitlines()[-1])
     return {k: np.asarray(v) if isinstance(v, list) else v for k, v in d.items()}

@@ -145,7 +145,9 @@ def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
 #: Throat/stagnation pressure ratio above which h0 − h is integrated (∫ c²/ρ dρ along the isentrope) instead of
 #: differenced: there h0 − h is under 1 % of h and the difference would lose more than two digits.
 QUADRATURE_ABOVE = 0.99
-_GAUSS3 = ((-0.7745966692414834, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.7745966692414834, 5.0 / 9.0))
+#: Gauss–Lobatto's 4-point rule on [−1, 1] (exact to degree 5): the end nodes are the throat and the stagnation
+#: state, already known; two interior evaluations.
+_LOBATTO4 = ((-1.0, 1.0 / 6.0), (-0.4472135954999579, 5.0 / 6.0), (0.4472135954999579, 5.0 / 6.0), (1.0, 1.0 / 6.0))
 
 
 def _stagnation(fluid, rho0, T0) -> tuple:
@@ -167,15 +169,17 @@ def _isentrope_slope(jet) -> float:
     return -jet[2][3] / jet[1][3]
 
 
-def _enthalpy_drop(fluid, rho0, T0, stag, rho_t, T_t, throat):
-    r"""h0 − h(ρ_t) = ∫ c²/ρ dρ from ρ_t to ρ0 along the isentrope s0 (dh = dp/ρ, dp = c² dρ), by 3-point
-    Gauss–Legendre quadrature [J/kg] (the interval is short, p_t ≥ 0.99 p0, and the integrand smooth: the rule's
-    error, ~(Δρ/2ρ)^6, is below 1e-13). Each node's temperature starts from the cubic Hermite interpolant of T(ρ)
-    with the isentrope's slopes at both ends (the ``stag`` and ``throat`` jets): one evaluation each, mostly."""
+def _enthalpy_drop(fluid, rho0, T0, stag, rho_t, T_t, throat, c_t):
+    r"""h0 − h(ρ_t) = ∫ c²/ρ dρ from ρ_t to ρ0 along the isentrope s0 (dh = dp/ρ, dp = c² dρ), by 4-point
+    Gauss–Lobatto quadrature [J/kg] (the interval is short, p_t ≥ 0.99 p0, and the integrand smooth: the rule's
+    error, ~(Δρ/ρ)^6/10^5, is below 1e-14). The end nodes are the throat (speed of sound c_t) and the stagnation
+    state; each interior node's temperature starts from the cubic Hermite interpolant of T(ρ) with the
+    isentrope's slopes at both ends (the ``stag`` and ``throat`` jets): one evaluation each, mostly."""
     s0, d = stag[0][3], rho0 - rho_t
     m_t, m_0 = _isentrope_slope(throat) * d, _isentrope_slope(stag) * d
-    half, mid, total = 0.5 * d, 0.5 * (rho0 + rho_t), 0.0
-    for x, w in _GAUSS3:
+    half, mid = 0.5 * d, 0.5 * (rho0 + rho_t)
+    total = (c_t * c_t / rho_t + stag[0][4] ** 2 / rho0) / 6.0
+    for x, w in _LOBATTO4[1:3]:
         rho, z = mid + half * x, 0.5 * (1.0 + x)  # z from 0 (throat) to 1 (stagnation)
         guess = ((2 * z ** 3 - 3 * z * z + 1) * T_t + (z ** 3 - 2 * z * z + z) * m_t + (3 * z * z - 2 * z ** 3) * T0
                  + (z ** 3 - z * z) * m_0)
@@ -207,7 +211,10 @@ def _flux_at_pressure(fluid, rho0, T0, stag, p_t):
                                         lambda pt, jet: (pt[0] - p_t, jet[2][0], jet[1][0]))
     c2 = pt[4] ** 2
     fluid.last_throat = (rho, T, st0[3], p_t, J)
-    drop = st0[2] - pt[2] if p_t < QUADRATURE_ABOVE * st0[0] else _enthalpy_drop(fluid, rho0, T0, stag, rho, T, jet)
+    if p_t < QUADRATURE_ABOVE * st0[0]:
+        drop = st0[2] - pt[2]
+    else:
+        drop = _enthalpy_drop(fluid, rho0, T0, stag, rho, T, jet, pt[4])
     v2 = 2.0 * drop
     v = math.sqrt(max(v2, 0.0))
     return rho * v, (v2 - c2) / (c2 * v) if v > 0.0 else math.inf
