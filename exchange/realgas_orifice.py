@@ -45,8 +45,8 @@ def _march(fluid, rho0, T0, s0, rho):
 
 def _throat_newton(fluid, rho0, s0, rho, T, residual) -> tuple:
     r"""(ρ, T, FluidPoint, jet) of the throat: Newton's method in (ρ, T) on s(ρ, T) = s0 and
-    ``residual(point, jet) -> (F, ∂F/∂ρ|T, ∂F/∂T|ρ)`` = 0, from (ρ, T); both unknowns together, one evaluation
-    of the equation of state and its derivatives per iteration. A step below :data:`TAYLOR_BELOW` of ρ and T is
+    ``residual(point, jet) -> (F, ∂F/∂ρ|T, ∂F/∂T|ρ)`` = 0, from (ρ, T); both unknowns together, one
+    evaluation of the equation of state and its derivatives per iteration. A step below :data:`TAYLOR_BELOW` of ρ and T is
     taken without another evaluation (the point is the Taylor step of the last, exact to ~1e-14). Steps keep ρ
     between half its value and the midpoint to ρ0, and T above half its value. Also returns the last Jacobian
     (J11, J12, J21, J22) of (s, F) in (ρ, T), for :func:`_predicted`."""
@@ -103,11 +103,13 @@ def _sonic_point(fluid, rho0, T0, st0):
 def real_gas_critical_state(fluid, rho0: float, T0: float) -> tuple:
     r"""The choked throat of an isentropic nozzle fed from the stagnation state (ρ0, T0).
 
-    Solves :math:`2(h_0 - h(\rho)) = c(\rho)^2` on the isentrope s = s0 by Newton's method in ρ, started from
-    the previous call's ρ*/ρ0 and T*/T0 (kept on ``fluid``: an integrator asks for nearby states), or on the first
-    call from the ideal-gas value :math:`\rho^* = \rho_0 (2/(\kappa+1))^{1/(\kappa-1)}` with the isentropic
-    exponent κ = ρ0·c0²/p0. It stops when 2(h0 − h) − c² is below 1e-12·c² (the isentrope's own tolerance), so
-    the start may change ρ* in its 13th digit and G* (stationary there) not at all.
+    Solves :math:`2(h_0 - h) = c^2` and :math:`s = s_0` by Newton's method in (ρ, T) together
+    (:func:`_throat_newton`), started from the previous call's throat moved to first order by the change of
+    (s0, h0) (:func:`_predicted`, kept on ``fluid``: an integrator asks for nearby states), or on the first call
+    from the ideal-gas value :math:`\rho^* = \rho_0 (2/(\kappa+1))^{1/(\kappa-1)}` with the isentropic exponent
+    κ = ρ0·c0²/p0, walked down the isentrope. The last Newton step, below 1e-7 of ρ and T, is taken as a Taylor
+    step (ρ*, T* exact to ~1e-14; G*, stationary there, to round-off), so the start may change ρ* in its 14th
+    digit.
 
     Parameters
     ----------
@@ -230,7 +232,8 @@ def real_gas_mass_flux(fluid, rho0: float, T0: float, p_down: float) -> float:
 
     with p* from :func:`real_gas_critical_state`. When the previous call's p*/p0 puts p_down above the choke
     point, the throat at p_down is computed first and kept if its velocity is below the speed of sound there
-    (dG/dp ≤ 0: then p_down ≥ p*, the isentrope crossing v = c once), saving the choke search. Below a relative pressure difference s = Δp/p0 of
+    (dG/dp ≤ 0: then p_down ≥ p*, the isentrope crossing v = c once), saving the choke search. Below a relative
+    pressure difference s = Δp/p0 of
     :data:`exchange.orifice.LINEAR_BELOW` the flux is the quadratic a·s + b·s² matching G and dG/ds at s = 1e-4
     (dG/ds = p0·(c² − v²)/(c²·v), exact), as the ideal law does.
 
