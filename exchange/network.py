@@ -156,7 +156,7 @@ class Network:
         kept: the switch functions, evaluated one after the other at each step's end, solve the equation of state
         once."""
         if self._keep_states:
-            key = (t, y.tobytes())
+            key = (t, np.asarray(y, dtype=float).tobytes())
             if key == self._kept[0]:
                 return self._kept[1]
             out = self._states(t, y)
