@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .jacobian import IMPLICIT, coupled_jacobian
+from .jacobian import jacobian_option
 from .progress import ProgressBar
 
 __all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS", "stiffness_advice"]
@@ -358,15 +358,14 @@ def _advance(system, t, y, stop, options, traj):
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
     events = events + [_step_budget(system, remaining, options, traj.deadline)]
-    extra = {"jac": coupled_jacobian(system, traj.stats)} if options.method in IMPLICIT and \
-        getattr(system, "coupled_unknowns", None) is not None else {}
     try:
         rhs = system.segment_rhs(stop) if options.compiled is not False and hasattr(system, "segment_rhs") \
             else system.rhs
         if rhs != system.rhs:  # bound methods compare equal, never identical
             traj.stats["path"] = "python, compiled rhs"
         sol = solve_ivp(rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
-                        max_step=options.max_step, dense_output=True, events=events, **extra)
+                        max_step=options.max_step, dense_output=True, events=events,
+                        **jacobian_option(system, options.method, rhs, traj.stats))
     except (ArithmeticError, ValueError) as exc:
         raise SolverError(f"the right-hand side failed near t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None
     if sol.status == -1:

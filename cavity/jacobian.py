@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["coupled_jacobian", "IMPLICIT"]
+__all__ = ["coupled_jacobian", "jacobian_option", "IMPLICIT"]
 
 #: Methods that use a Jacobian (LSODA in its stiff mode).
 IMPLICIT = ("LSODA", "BDF", "Radau")
@@ -28,3 +28,11 @@ def coupled_jacobian(system, stats: dict):
         return J
 
     return jac
+
+
+def jacobian_option(system, method: str, rhs, stats: dict) -> dict:
+    """solve_ivp's ``jac`` keyword: :func:`coupled_jacobian` for an implicit method when the system names its
+    ``coupled_unknowns`` and ``rhs`` is its own Python right-hand side; else none (the method differences all)."""
+    if method in IMPLICIT and rhs == system.rhs and getattr(system, "coupled_unknowns", None) is not None:
+        return {"jac": coupled_jacobian(system, stats)}
+    return {}
