@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .leak_state import leak_area_at, open_area_at, theta_at
+from .leak_state import leak_area_at, open_area_at, thetas_at
 
 __all__ = ["engineering_columns"]
 
@@ -15,8 +15,8 @@ def _blocked_fraction(model, trajectory, j: int, times) -> np.ndarray:
     if geo is None or j >= len(geo["areas"]) or geo["areas"][j] is None:
         return np.zeros(len(times))
     track, out = geo["areas"][j].track, np.zeros(len(times))
-    for k, t in enumerate(times):
-        th = theta_at(model, trajectory, float(t))
+    for k, th in enumerate(thetas_at(model, trajectory, times)):
+        th = float(th)
         a_open = open_area_at(track, th)
         out[k] = 1.0 - leak_area_at(track, th) / a_open if a_open > 0.0 else 0.0
     return out

@@ -20,7 +20,7 @@ from blockage.areas import active_counts, leak_area
 
 from .gaps import table_values
 
-__all__ = ["LeakState", "theta_at", "leak_area_at", "open_area_at", "leak_state"]
+__all__ = ["LeakState", "theta_at", "thetas_at", "leak_area_at", "open_area_at", "leak_state"]
 
 
 @dataclass(frozen=True)
@@ -47,6 +47,14 @@ def theta_at(model, trajectory, t: float) -> float:
     """The geometry parameter at time t: t itself, or the dynamic body's displacement [m]."""
     driver = model.geometry["driver"]
     return t if driver.dynamic is None else float(trajectory(t)[model.network.body_offset])
+
+
+def thetas_at(model, trajectory, times) -> np.ndarray:
+    """:func:`theta_at` at many sorted times at once (one read of the trajectory)."""
+    times = np.asarray(times, dtype=float)
+    if model.geometry["driver"].dynamic is None:
+        return times.copy()
+    return trajectory.sample(times)[:, model.network.body_offset]
 
 
 def leak_area_at(track, theta: float) -> float:
