@@ -12,12 +12,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from .volume import effective_volume
 
 __all__ = ["HydraulicCavity", "HydraulicState", "hydraulic_pressure"]
 
 
+@njit(cache=True, inline="always")
 def hydraulic_pressure(density: float, reference_density: float, bulk_modulus: float,
                        reference_pressure: float) -> float:
     r"""Pressure of a liquid of constant bulk modulus [Pa].

@@ -7,12 +7,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from numba import njit
+
 from .gas import Mixture
 from .tables import Table
 
 __all__ = ["MassTemperatureInflator", "TankTestInflator", "tank_test_mass_flow"]
 
 
+@njit(cache=True, inline="always")
 def tank_test_mass_flow(tank_volume: float, tank_pressure_rate: float, gamma: float, R: float,
                         T_inflator: float) -> float:
     r"""Inflator mass flow inferred from a rigid adiabatic tank test [kg/s].

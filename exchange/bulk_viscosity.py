@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import math
 
+from numba import njit
+
 __all__ = [
     "bulk_viscosity_mass_flow",
     "bulk_viscosity_pressure_drop",
@@ -29,9 +31,10 @@ __all__ = [
 ]
 
 
+@njit(cache=True, inline="always")
 def _check_coefficients(c_v: float, c_h: float) -> None:
     if c_v < 0.0 or c_h < 0.0:
-        raise ValueError(f"bulk viscosity coefficients must be >= 0, got c_v={c_v}, c_h={c_h}")
+        raise ValueError("bulk viscosity coefficients c_v, c_h must be >= 0")
     if c_v == 0.0 and c_h == 0.0:
         raise ValueError("bulk viscosity needs c_v > 0 or c_h > 0 (both zero is an infinite conductance)")
 
@@ -71,6 +74,7 @@ def bulk_viscosity_pressure_drop(mdot: float, rho: float, area: float, c_v: floa
     return c_v * v + c_h * rho * v * abs(v)
 
 
+@njit(cache=True, inline="always")
 def bulk_viscosity_mass_flow(dp: float, rho: float, area: float, c_v: float, c_h: float) -> float:
     r"""Mass flow driven by a pressure difference through a viscous + hydrodynamic resistance [kg/s].
 
@@ -136,6 +140,7 @@ def linear_resistance_conductance(rho: float, area: float, c_v: float) -> float:
     return rho * area / c_v
 
 
+@njit(cache=True, inline="always")
 def linear_resistance_mass_flow(dp, conductance):
     r"""Mass flow through a linear resistance [kg/s].
 

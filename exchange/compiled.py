@@ -2,11 +2,13 @@
 
 :func:`lower` returns a :class:`CompiledNetwork` when every part of the network is of a supported kind, else
 ``None`` with the reason in :func:`unsupported_reason`; :func:`cavity.integration.integrate` then runs the Python
-path. Supported: a plain ``Network`` (not a subclass), ideal-gas mixtures with piecewise cp polynomials,
-adiabatic, isothermal or heat-loss cavities with fixed, table or scaled-mesh volumes, mass/temperature-table
-inflators, exchanges to ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe or
-linear-resistance law (constant Cd), with an optional time window, amplitude table and pop pressure with hold
-time (no delta area).
+path. Supported: a plain ``Network`` or a scene network that lowers its geometry, ideal-gas mixtures with
+piecewise cp polynomials, adiabatic, isothermal or heat-loss gas cavities and hydraulic cavities (without
+inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table and tank-test inflators, exchanges to
+ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance,
+leakage-table (mass or volume rate), prescribed-flux (mass or volume) or bulk-viscosity law, a constant Cd or a
+Cd table of upstream pressure or time, with an optional time window, amplitude table, pop pressure with hold time
+and DELTA LEAKAGE AREA (not on an area that follows the dynamic body).
 
 The arrays are described in :mod:`exchange.compiled_rhs`.
 """
@@ -20,16 +22,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cavity.inflator import MassTemperatureInflator
+from cavity.inflator import MassTemperatureInflator, TankTestInflator
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 
 from . import laws
+from .discharge import DischargeTable
+from .law_kinks import dp_kinks, pressure_kinks
+from .lowered_columns import area_at_activation, law_parameters, law_tables, liquid as liquid_columns
 
 __all__ = ["CompiledNetwork", "lower", "unsupported_reason"]
 
 ENERGY = {"adiabatic": 0, "isothermal": 1, "heat_loss": 2}
 #: law class of :mod:`exchange.laws` -> kind code in ``ei[:, 7]`` (:func:`exchange.compiled_rhs.law_flow`)
-LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResistanceLaw": 3}
+LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResistanceLaw": 3, "LeakageTableLaw": 4,
+             "FluxLaw": 5, "BulkViscosityLaw": 6}
+#: inflator class -> kind code in ``ii[:, 3]`` (:func:`exchange.compiled_rhs.inflator_mass_flow`)
+INFLATOR_KINDS = {MassTemperatureInflator: 0, TankTestInflator: 1}
 
 
 @dataclass
@@ -61,6 +69,8 @@ class CompiledNetwork:
             eq[j] = net.equalised[j]
             op[j] = 0 if self.model[12][j, 6] == 1 and not net.popped[j] else 1
             hold[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
+            if self.model[12][j, 6] == 1:  # a pop vent's area at activation (set when it pops)
+                model[13][j, 9] = net.area_at_activation[j] or 0.0
         y0 = np.asarray(y0, dtype=float)
         if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
@@ -102,13 +112,28 @@ class CompiledNetwork:
         popped = tuple(bool(p) for p in row[5:5 + ne])
         holding = tuple(None if math.isnan(h) else h for h in row[5 + ne:5 + 2 * ne])
         intervals = tuple(int(i) for i in row[5 + 2 * ne:5 + 3 * ne])
-        key = (code, popped, holding, intervals)
+        key = (code, popped, holding, intervals, row[2])
         if key not in self._modes:
-            areas = tuple(ex.area if p else None for ex, p in zip(self.network.exchanges, popped))
+            areas = self._areas_at_activation(popped, row[2])
             mode = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
             wrap = getattr(self.network, "wrap_mode", None)
             self._modes[key] = wrap(mode, intervals) if wrap is not None else mode
         return self._modes[key]
+
+    def _areas_at_activation(self, popped, t_min) -> tuple:
+        """``Network.area_at_activation`` in a segment starting at t_min: a popped vent's area at its pop; the
+        area at the open time of a DELTA LEAKAGE AREA opened by time once a segment starts after it (the Python
+        path sets it at its first right-hand side past the open time); else None."""
+        ei, ef, out = self.model[12], self.model[13], []
+        for j, ex in enumerate(self.network.exchanges):
+            act = ex.activation
+            if popped[j]:
+                out.append(float(ef[j, 9]))
+            elif ei[j, 14] and ei[j, 6] == 0 and t_min > act.open_time:
+                out.append(float(ef[j, 9]))
+            else:
+                out.append(None)
+        return tuple(out)
 
     def segment_mode(self, code) -> tuple:
         """The network's snapshot during segment ``code`` of the latest :meth:`run`."""
@@ -138,21 +163,24 @@ def unsupported_reason(net) -> str | None:
     if geometry is not None and isinstance(geometry(), str):
         return geometry()
     for cav in net.cavities:
-        if getattr(cav, "kind", "gas") != "gas" or cav.energy not in ENERGY:
+        kind = getattr(cav, "kind", "gas")
+        if kind == "hydraulic" and cav.inflators:
+            return f"cavity {cav.name}: a hydraulic cavity with inflators"
+        if kind not in ("gas", "hydraulic") or (kind == "gas" and cav.energy not in ENERGY):
             return f"cavity {cav.name}: kind or energy model"
         if not isinstance(cav.volume, (FixedVolume, TableVolume, ScaledMeshVolume)) and not _splined(net, cav):
             return f"cavity {cav.name}: volume model {type(cav.volume).__name__}"
         for inf in cav.inflators:
-            if type(inf) is not MassTemperatureInflator or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
+            if type(inf) not in INFLATOR_KINDS or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
                 return f"inflator {inf.name}: {type(inf).__name__}"
-    for ex in net.exchanges:
+    for j, ex in enumerate(net.exchanges):
         law = type(ex.law).__name__
         if law not in LAW_KINDS or type(ex.law) is not getattr(laws, law) \
-                or not isinstance(getattr(ex.law, "discharge_coefficient", 1.0), (int, float)):
-            return f"exchange {ex.name}: law {law} (only {', '.join(LAW_KINDS)} with a constant Cd)"
+                or not isinstance(getattr(ex.law, "discharge_coefficient", 1.0), (int, float, DischargeTable)):
+            return f"exchange {ex.name}: law {law} (only {', '.join(LAW_KINDS)})"
         act = ex.activation
-        if act is not None and act.delta_area:
-            return f"exchange {ex.name}: delta area"
+        if act is not None and act.delta_area and _geometry(net).get("areas", {}).get(j, (0,) * 4)[3]:
+            return f"exchange {ex.name}: delta area of an area that follows the dynamic body"
     return None
 
 
@@ -208,33 +236,31 @@ def _cavities(net, tables):
         tab = tables.add(vol.table) if kind == 1 else tables.add(vol.scale) if kind == 2 else \
             _spline_entry(tables, *splines[cav.name][:2]) if kind >= 3 else -1
         size = vol.volume if kind == 0 else vol.mesh_volume if kind == 2 else 0.0
-        hA = cav.heat_transfer_coefficient * cav.heat_transfer_area
-        ci.append((k, ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses),
-                   int(_geometry(net)["body"][0]) if kind == 4 else -1))
-        cf.append((cav.initial_temperature, cav.added_volume, cav.minimum_volume, hA, cav.ambient_temperature,
-                   size))
-    return np.array(ci, dtype=np.int64).reshape(-1, 7), np.array(cf, dtype=float)
+        liquid = getattr(cav, "kind", "gas") == "hydraulic"
+        hA = 0.0 if liquid else cav.heat_transfer_coefficient * cav.heat_transfer_area
+        ci.append((k, 1 if liquid else ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses),
+                   int(_geometry(net)["body"][0]) if kind == 4 else -1, int(liquid),
+                   tables.add(cav.temperature) if liquid else -1))
+        cf.append((cav.initial_temperature, cav.added_volume, cav.minimum_volume, hA,
+                   0.0 if liquid else cav.ambient_temperature, size) + liquid_columns(cav))
+    return np.array(ci, dtype=np.int64).reshape(-1, 9), np.array(cf, dtype=float).reshape(-1, 11)
 
 
 def _inflators(net, tables, ns, nr):
+    """``ii`` (cavity, flow table, temperature table, kind), ``if_`` (start, scale, gas mass, mass fractions, tank
+    volume, gas moles) and ``irows`` of the inflators (:mod:`exchange.compiled_rhs`); the flow table is the mass
+    flow of a mass/temperature inflator, the tank pressure of a tank-test inflator."""
     ii, ifl, irows = [], [], []
     for i, cav in enumerate(net.cavities):
         for inf in cav.inflators:
-            ii.append((i, tables.add(inf.mass_flow_table), tables.add(inf.temperature_table)))
-            ifl.append([inf.start, inf.scale, inf.gas.mass] + list(np.asarray(inf.mass_fractions, dtype=float)))
+            kind = INFLATOR_KINDS[type(inf)]
+            flow = inf.tank_pressure_table if kind == 1 else inf.mass_flow_table
+            ii.append((i, tables.add(flow), tables.add(inf.temperature_table), kind))
+            ifl.append([inf.start, inf.scale, inf.gas.mass] + list(np.asarray(inf.mass_fractions, dtype=float))
+                       + [getattr(inf, "tank_volume", 0.0), inf.gas.moles])
             irows.append(np.array(inf.gas.rows, dtype=float))
-    return (np.array(ii, dtype=np.int64).reshape(-1, 3), np.array(ifl, dtype=float).reshape(-1, 3 + ns),
+    return (np.array(ii, dtype=np.int64).reshape(-1, 4), np.array(ifl, dtype=float).reshape(-1, 5 + ns),
             np.array(irows, dtype=float).reshape(-1, nr, 7))
-
-
-def _law_parameters(law) -> tuple:
-    """(Cd, parameter 1, parameter 2) of a law for ``ef[:, (1, 6, 7)]``."""
-    name = type(law).__name__
-    if name == "GraefeLaw":
-        return 1.0, law.flc, law.fac
-    if name == "LinearResistanceLaw":
-        return 1.0, law.conductance, 0.0
-    return float(law.discharge_coefficient), getattr(law, "open_fraction", 1.0), 0.0
 
 
 def _exchanges(net, tables):
@@ -245,7 +271,7 @@ def _exchanges(net, tables):
         amp = tables.add(act.amplitude) if act is not None and act.amplitude is not None else -1
         window = act is not None
         pop = window and act.pop_pressure is not None
-        cd, p1, p2 = _law_parameters(ex.law)
+        cd, p1, p2 = law_parameters(ex.law)
         steps, scale, kind, switch_scale = -1, -1, 0, 1.0
         if j in geometric:
             x, y, scale_table, by_displacement, switch_scale = geometric[j]
@@ -254,17 +280,19 @@ def _exchanges(net, tables):
             kind = 2 if by_displacement else 1
         ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
                    int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__], steps,
-                   scale, kind))
+                   scale, kind) + law_tables(ex.law, tables))
         ef.append((ex.area, cd, act.open_time if window else 0.0, act.close_time if window else math.inf,
-                   act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2, switch_scale))
-    return np.array(ei, dtype=np.int64).reshape(-1, 11), np.array(ef, dtype=float).reshape(-1, 9)
+                   act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2, switch_scale,
+                   area_at_activation(net, j)))
+        ei[-1] += (int(window and act.delta_area),)
+    return np.array(ei, dtype=np.int64).reshape(-1, 15), np.array(ef, dtype=float).reshape(-1, 10)
 
 
 def _switches(net):
-    """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 4 pop, 5 pop-drop,
-    6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area interval, 10 its
-    turning point), their exchanges and labels, in the order of :meth:`Network.events` (each watched only in its
-    discrete state)."""
+    """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 11/12 a law's kink,
+    4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area
+    interval, 10 its turning point), their exchanges (a kink: j + ne·(row + 1)) and labels, in the order of
+    :meth:`Network.events` (each watched only in its discrete state)."""
     kinds, js, labels = [], [], []
 
     def add(kind, j, what):
@@ -273,15 +301,22 @@ def _switches(net):
         labels.append(f"{net.exchanges[j].name}:{what}")
 
     for j, ex in enumerate(net.exchanges):
-        if ex.law.pneumatic:
+        driven = not ex.law.prescribed  # a prescribed flux has no pressure-driven switch
+        if ex.law.pneumatic and driven:
             add(0, j, "choke")
-        if getattr(ex.law, "orifice_join", False):
+        if getattr(ex.law, "orifice_join", False) and driven:
             add(7, j, "join")
-        if ex.downstream is None and not ex.two_way:
+        if driven and ex.downstream is None and not ex.two_way:
             add(1, j, "reversal")
-        elif net.can_equalise(j):
+        elif driven and net.can_equalise(j):
             add(2, j, "equalise")
             add(3, j, "release")
+        if driven:  # a law's kinks: row k of its Cd table of pressure (11) or leakage table (12), j + ne·(k + 1)
+            for kind, rows in ((11, pressure_kinks(ex.law)), (12, dp_kinks(ex.law))):
+                for k in range(len(rows)):
+                    r = k + (1 if kind == 12 else 0)  # the row of the table
+                    add(kind, j, f"kink{r}")
+                    js[-1] = j + len(net.exchanges) * (r + 1)
         if ex.activation is not None and ex.activation.pop_pressure is not None:
             add(4, j, "pop")
             add(5, j, "pop-drop")

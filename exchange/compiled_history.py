@@ -13,9 +13,9 @@ Each step of the Python builder has its mirror here:
   t, right limit at a switch), :func:`segment_of`;
 - the step of that segment and its 7th-order interpolant: ``DenseSteps.__call__`` (the left step at a step end),
   :func:`dense_state` with :func:`cavity.rk_compiled.dense_eval`;
-- the discrete state: ``Network.restore(mode)``; a lowered network has no delta areas
-  (:func:`exchange.compiled.unsupported_reason`), so of a mode only the equalised flags (``mode[3]``) and the
-  popped flags (``mode[0]``) act, passed per segment as ``eqs`` and ``ops`` (0 while a pop vent is shut);
+- the discrete state: ``Network.restore(mode)``; of a mode the equalised flags (``mode[3]``) and the popped flags
+  (``mode[0]``) act, passed per segment as ``eqs`` and ``ops`` (0 while a pop vent is shut); a DELTA LEAKAGE
+  AREA's area at activation is set once per run (``ef[:, 9]``) and acts only while its exchange is open;
 - the row: the columns of :func:`cases.runner.history_columns`, time [s], then per cavity pressure [Pa],
   temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area [m^2].
 """

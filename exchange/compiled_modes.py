@@ -5,9 +5,10 @@ Mirrors of :meth:`exchange.network.Network.events` (which switches exist in the 
 :meth:`~exchange.network.Network.on_event` and :meth:`~exchange.network.Network.snapshot`. The state lives in the
 model tuple of :class:`exchange.compiled.CompiledNetwork`: ``M[20]`` equalised flags, ``M[21]`` 0 while a pop vent
 has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`` and ``M[13]`` are the exchanges'
-``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`). Switch kinds: 0 choke, 1 one-way reversal, 2 equalise,
-3 release, 4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body reaching the crossing above/below its area interval
-``M[23][j]``, 10 its turning point.
+``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`); a pop sets the vent's area at activation ``ef[j, 9]``. Switch
+kinds: 0 choke, 1 one-way reversal, 2 equalise, 3 release, 4 pop, 5 pop-drop, 6 pop-hold, 7 orifice join, 8/9 the
+dynamic body reaching the crossing above/below its area interval ``M[23][j]``, 10 its turning point, 11/12 a
+row of a law's Cd table of pressure / leakage table (:mod:`exchange.law_kinks`).
 """
 from __future__ import annotations
 
@@ -15,6 +16,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from .compiled_rhs import base_area
 
 __all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_intervals"]
 
@@ -24,6 +27,8 @@ def watched(M, kind, j):
     """Switch (kind, exchange j) is one of :meth:`Network.events` in the current discrete state: equalise while
     open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped."""
     eq, op, hold = M[20], M[21], M[22]
+    if kind >= 11:  # a law's kinks (exchange.law_kinks): always watched
+        return True
     if kind == 8:  # a crossing above the body's area interval exists
         return M[23][j] < M[6][M[12][j, 8], 1] - 1
     if kind == 9:
@@ -53,8 +58,9 @@ def on_event(M, kind, j, t):
         M[22][j] = t
     elif kind == 5:
         M[22][j] = math.nan
-    elif kind == 4 or kind == 6:  # (kind 7, the orifice join, changes nothing)
+    elif kind == 4 or kind == 6:  # (kind 7, the orifice join, changes nothing); its area at activation
         M[21][j] = 1
+        M[13][j, 9] = base_area(M[12], M[13], M[23], M[4], M[5], M[6], j, t)
 
 
 @njit(cache=True)

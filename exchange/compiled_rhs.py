@@ -14,15 +14,23 @@ Array layout (built by :func:`exchange.compiled.lower`):
 - gas: ``rows`` (ns, nr, 7) per-mole coefficients (a, b, c, d, e, f, H offset) per species and range,
   ``breaks`` (nr − 1,) [K], ``linear`` (nr,) 1 where every species has a constant cp, ``M`` (ns,) [kg/mol];
 - tables: ``tx``, ``ty`` concatenated; ``ti`` (ntab, 3): first row, rows, 1 for linear extrapolation;
-- cavities ``ci`` (nc, 6) int: offset, energy (0 adiabatic, 1 isothermal, 2 heat loss), volume kind (0 fixed,
-  1 table, 2 scaled mesh, 3 cubic spline of time), volume table, ledger offset, species count; ``cf`` (nc, 6): T0 [K], added volume
-  [m^3], minimum volume [m^3], h_c·A [W/K], T_amb [K], fixed or mesh volume [m^3];
-- inflators ``ii`` (ni, 3) int: cavity, mass-flow table, temperature table; ``if_`` (ni, 3 + ns): start [s],
-  scale [-], gas mass [kg], mass fractions; ``irows`` (ni, nr, 7) total coefficients of the inflator gas;
+- cavities ``ci`` (nc, 9) int: offset, energy (0 adiabatic, 1 isothermal or hydraulic, 2 heat loss), volume kind
+  (0 fixed, 1 table, 2 scaled mesh, 3 cubic spline of time, 4 of the dynamic body's displacement), volume table,
+  ledger offset, species count, the body's offset, hydraulic (1), temperature table of a hydraulic cavity;
+  ``cf`` (nc, 11): T0 [K], added volume [m^3], minimum volume [m^3], h_c·A [W/K], T_amb [K], fixed or mesh volume
+  [m^3], and of a hydraulic cavity reference density [kg/m^3], bulk modulus [Pa], reference pressure [Pa],
+  reference temperature [K], thermal expansion [1/K];
+- inflators ``ii`` (ni, 4) int: cavity, mass-flow (or tank-pressure) table, temperature table, kind (0 mass and
+  temperature tables, 1 tank test); ``if_`` (ni, 5 + ns): start [s], scale [-], gas mass [kg], mass fractions,
+  tank volume [m^3], gas moles [mol]; ``irows`` (ni, nr, 7) total coefficients of the inflator gas;
 - exchanges ``ei`` (ne, 10) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
   has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`),
-  geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none); ``ef`` (ne, 8): area [m^2], Cd [-], open time [s], close time [s], pop pressure [Pa], hold time
-  [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance: conductance);
+  geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind,
+  law table (leakage table rows or flux amplitude, −1: none), Cd table (−1: the constant ``ef[:, 1]``), Cd
+  abscissa (0 upstream pressure, 1 time); ``ef`` (ne, 9): area [m^2], Cd [-], open time [s], close time [s], pop
+  pressure [Pa], hold time [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance:
+  conductance; leakage table: volume flag, held-last flag; flux: flux per area, volume flag; bulk viscosity: c_v,
+  c_h), switch scale;
   ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.equalised.EQUALISED_BELOW`); ``op`` (ne,)
   int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
   holding);
@@ -37,97 +45,15 @@ import math
 import numpy as np
 from numba import njit
 
-from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
-from .orifice import LINEAR_BELOW, critical_pressure_ratio, orifice_mass_flow
+from .compiled_sources import inflator_mass_flow, law_flow, liquid_state, prescribed_flow
+from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, mixture_row, range_of, row_cp,
+                              row_enthalpy, side, spline_value, step_value, table_value, volume_of)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
+from .orifice import LINEAR_BELOW, critical_pressure_ratio, orifice_mass_flow  # noqa: F401 (re-exported)
 
-R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
 NEWTON_RTOL = 1e-10  # cavity.tolerances.TOL.newton_rtol
 NEWTON_MAX = 60
 T_FLOOR = 1.0
-
-P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # columns of the state scratch
-
-
-@njit(cache=True, inline="always")
-def table_value(tx, ty, ti, k, x):
-    """:meth:`cavity.tables.Table.__call__` of table k at x (piecewise linear, constant or linear ends)."""
-    s, n, lin = ti[k, 0], ti[k, 1], ti[k, 2]
-    if n == 1:
-        return ty[s]
-    if x <= tx[s] and lin == 0:
-        return ty[s]
-    if x >= tx[s + n - 1] and lin == 0:
-        return ty[s + n - 1]
-    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
-    i = min(max(i, 0), n - 2) + s
-    w = (x - tx[i]) / (tx[i + 1] - tx[i])
-    return ty[i] + w * (ty[i + 1] - ty[i])
-
-
-@njit(cache=True, inline="always")
-def table_slope(tx, ty, ti, k, x):
-    """:meth:`cavity.tables.Table.slope` of table k at x (from the right at a breakpoint)."""
-    s, n, lin = ti[k, 0], ti[k, 1], ti[k, 2]
-    if n == 1 or (lin == 0 and (x < tx[s] or x >= tx[s + n - 1])):
-        return 0.0
-    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
-    i = min(max(i, 0), n - 2) + s
-    return (ty[i + 1] - ty[i]) / (tx[i + 1] - tx[i])
-
-
-@njit(cache=True, inline="always")
-def step_value(tx, ty, ti, k, x):
-    """Step table k at x: ty[i] for tx[i] <= x < tx[i+1] (right limit at a step; tx[0] is -inf)
-    (:meth:`cases.area_track.AreaTrack.area_in` on a fixed surface)."""
-    s, n = ti[k, 0], ti[k, 1]
-    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
-    return ty[s + max(i, 0)]
-
-
-@njit(cache=True, inline="always")
-def spline_value(tx, ty, ti, k, x):
-    """(value, slope) of the cubic spline k at x: knots in table k, coefficients (4 per piece, highest power
-    first, as scipy's PPoly) in table k + 1; held at its ends, slope 0 outside (:class:`cases.geometry.
-    WrappedVolume`)."""
-    s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]
-    inside = tx[s] <= x <= tx[s + n - 1]
-    x = min(max(x, tx[s]), tx[s + n - 1])
-    i = min(max(np.searchsorted(tx[s:s + n], x, side="right") - 1, 0), n - 2)
-    d = x - tx[s + i]
-    q = c + 4 * i
-    value = ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3]
-    slope = (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2] if inside else 0.0
-    return value, slope
-
-
-@njit(cache=True, inline="always")
-def range_of(breaks, T):
-    """Index of the temperature range holding T [K] (bisect_right on the interior breaks)."""
-    return np.searchsorted(breaks, T, side="right") if breaks.size else 0
-
-
-@njit(cache=True, inline="always")
-def mixture_row(rows, n, i, out):
-    """Mole-weighted row of range i (:meth:`cavity.gas.Mixture._combined`): Σ n_s·rows[s, i] into out (7,)."""
-    for c in range(7):
-        out[c] = n[0] * rows[0, i, c]
-    for s in range(1, n.size):
-        if n[s] != 0.0:
-            for c in range(7):
-                out[c] += n[s] * rows[s, i, c]
-
-
-@njit(cache=True, inline="always")
-def row_enthalpy(r, T):
-    """H(T) [J] of a coefficient row (:meth:`cavity.gas.Mixture.enthalpy`)."""
-    return T * (r[0] + T * (r[1] / 2.0 + T * (r[2] / 3.0 + T * (r[3] / 4.0 + T * r[5] / 5.0)))) - r[4] / T + r[6]
-
-
-@njit(cache=True, inline="always")
-def row_cp(r, T):
-    """Cp(T) [J/K] of a coefficient row (:meth:`cavity.gas.Mixture.heat_capacity_p`)."""
-    return r[0] + T * (r[1] + T * (r[2] + T * (r[3] + T * r[5]))) + r[4] / (T * T)
 
 
 @njit(cache=True, inline="always")
@@ -161,26 +87,6 @@ def temperature(rows, breaks, linear, n, nmol, U, T_guess, row):
 
 
 @njit(cache=True, inline="always")
-def volume_of(ci, cf, tx, ty, ti, i, t, y):
-    """(V, dV/dt) of cavity i's geometric volume [m^3, m^3/s] (FixedVolume, TableVolume, ScaledMeshVolume, a
-    volume wrapped around prescribed bodies: a cubic spline of time, kind 3, or around the dynamic body: of its
-    displacement, kind 4)."""
-    kind = ci[i, 2]
-    if kind == 0:
-        return cf[i, 5], 0.0
-    k = ci[i, 3]
-    if kind == 3:
-        return spline_value(tx, ty, ti, k, t)
-    if kind == 4:  # a spline of the dynamic body's displacement y[ci[i, 6]]: dV/dt = dV/ds·v
-        value, slope = spline_value(tx, ty, ti, k, y[ci[i, 6]])
-        return value, slope * y[ci[i, 6] + 1]
-    if kind == 1:
-        return table_value(tx, ty, ti, k, t), table_slope(tx, ty, ti, k, t)
-    s = table_value(tx, ty, ti, k, t)
-    return s * s * s * cf[i, 5], 3.0 * s * s * table_slope(tx, ty, ti, k, t) * cf[i, 5]
-
-
-@njit(cache=True, inline="always")
 def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row):
     """Fill ``st`` with every cavity's state at (t, y) (:meth:`cavity.cavity.CavityState.of` + ``gas_point``).
 
@@ -188,6 +94,9 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
     """
     ok = True
     for i in range(ci.shape[0]):
+        if ci[i, 7] == 1:
+            liquid_state(ci, cf, tx, ty, ti, i, t, y, st)
+            continue
         k, ns = ci[i, 0], ci[i, 5]
         m = 0.0
         nmol = 0.0
@@ -236,14 +145,26 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
 
 @njit(cache=True, inline="always")
 def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
-    """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area` without delta area);
-    ``op[j]`` is 0 while a pop vent has not popped; ``iv[j]`` the interval of the dynamic body's displacement
-    that holds the area of an area kind 2 (``ei[j, 10]``)."""
+    """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area`); ``op[j]`` is 0 while a
+    pop vent has not popped; ``iv[j]`` the interval of the dynamic body's displacement that holds the area of an
+    area kind 2 (``ei[j, 10]``); with DELTA LEAKAGE AREA (``ei[j, 14]``) the base area less its value at
+    activation ``ef[j, 9]``, clipped at zero."""
     if ei[j, 4] == 1 and not (ef[j, 2] <= t < ef[j, 3]):
         return 0.0
     if op[j] == 0:
         return 0.0
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
+    base = base_area(ei, ef, iv, tx, ty, ti, j, t)
+    if ei[j, 14] == 1:
+        base = max(base - ef[j, 9], 0.0)
+    return a * base
+
+
+@njit(cache=True, inline="always")
+def base_area(ei, ef, iv, tx, ty, ti, j, t):
+    """Leakage area of exchange j before activation rules [m^2] (:meth:`exchange.network.Network.base_area`):
+    the constant ``ef[j, 0]``, a step table of time, or the area of the dynamic body's interval ``iv[j]``, times
+    the square of its mesh scale."""
     if ei[j, 10] == 2:
         base = ty[ti[ei[j, 8], 0] + iv[j]]
     elif ei[j, 8] >= 0:
@@ -253,30 +174,7 @@ def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
     if ei[j, 9] >= 0:  # the leakage surface scales with its cavity mesh: area × s²
         sc = table_value(tx, ty, ti, ei[j, 9], t)
         base *= sc * sc
-    return a * base
-
-
-@njit(cache=True, inline="always")
-def side(st, amb, i, c):
-    """Column c of the gas point of cavity i, or of ambient (i < 0)."""
-    return amb[c] if i < 0 else st[i, c]
-
-
-@njit(cache=True, inline="always")
-def law_flow(ei, ef, st, amb, j, u, p_down, area):
-    """Mass flow [kg/s] of exchange j's law from side u (cavity, or ambient if < 0) into p_down [Pa], >= 0
-    (``law.mass_flow`` of :mod:`exchange.laws`; kinds in :data:`exchange.compiled.LAW_KINDS`)."""
-    kind, p_up = ei[j, 7], side(st, amb, u, P)
-    if kind == 2:  # GraefeLaw
-        return graefe_mass_flow(p_up, p_down, side(st, amb, u, RHO), area, ef[j, 6], ef[j, 7])
-    if kind == 3:  # LinearResistanceLaw
-        dp = p_up - p_down
-        return ef[j, 6] * area * dp if dp > 0 else 0.0
-    if kind == 1:  # FabricLeakageLaw
-        return fabric_leakage_mass_flow(p_up, side(st, amb, u, TT), p_down, side(st, amb, u, RG),
-                                        side(st, amb, u, GAM), area, ef[j, 1], ef[j, 6])
-    return orifice_mass_flow(p_up, side(st, amb, u, TT), p_down, side(st, amb, u, RG), side(st, amb, u, GAM), area,
-                             ef[j, 1])
+    return base
 
 
 @njit(cache=True, inline="always")
@@ -286,13 +184,15 @@ def exchange_flow(ei, ef, eq, op, iv, tx, ty, ti, st, amb, j, t):
     area = exchange_area(ei, ef, op, iv, tx, ty, ti, j, t)
     if area <= 0.0 or eq[j] == 1:
         return 0.0
+    if ei[j, 7] == 5:
+        return prescribed_flow(ei, ef, tx, ty, ti, st, j, area, t)
     a, b = ei[j, 0], ei[j, 1]
     pa, pb = side(st, amb, a, P), side(st, amb, b, P)
     if pa >= pb:
-        return law_flow(ei, ef, st, amb, j, a, pb, area)
+        return law_flow(ei, ef, tx, ty, ti, st, amb, j, a, pb, area, t)
     if b < 0 and ei[j, 2] == 0:
         return 0.0
-    return -law_flow(ei, ef, st, amb, j, b, pa, area)
+    return -law_flow(ei, ef, tx, ty, ti, st, amb, j, b, pa, area, t)
 
 
 @njit(cache=True, inline="always")
@@ -320,7 +220,7 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
         i, start = ii[q, 0], if_[q, 0]
         if t < start:
             continue
-        mdot = if_[q, 1] * table_value(tx, ty, ti, ii[q, 1], t - start)
+        mdot = inflator_mass_flow(ii, if_, irows, breaks, tx, ty, ti, q, t)
         if mdot != 0.0:
             T_in = table_value(tx, ty, ti, ii[q, 2], t - start)
             r = irows[q, range_of(breaks, T_in)]

@@ -11,11 +11,12 @@ that it applies to this table too is our assumption.
 """
 from __future__ import annotations
 
-import bisect
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from cavity.tables import Table
 
 __all__ = ["PRESSURE", "TIME", "DischargeTable", "discharge_coefficient"]
 
@@ -61,27 +62,21 @@ class DischargeTable:
     x: tuple[float, ...]
     cd: tuple[float, ...]
     variable: str = PRESSURE
-    _slopes: tuple[float, ...] = field(init=False, repr=False, compare=False)
+    table: Table = field(init=False, repr=False, compare=False)  # the interpolation (the compiled path lowers it)
 
     def __post_init__(self) -> None:
         x = tuple(float(v) for v in self.x)
         cd = tuple(float(v) for v in self.cd)
         _check_table(x, cd, self.variable)
-        slopes = tuple((cd[i + 1] - cd[i]) / (x[i + 1] - x[i]) for i in range(len(x) - 1))
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "cd", cd)
-        object.__setattr__(self, "_slopes", slopes)
+        object.__setattr__(self, "table", Table(x, cd, f"discharge coefficient against {self.variable}"))
 
     def __call__(self, value):
         """Cd at ``value`` (pressure [Pa] or time [s]); float or numpy array."""
         if isinstance(value, np.ndarray):
             return np.interp(value, self.x, self.cd)
-        if value <= self.x[0]:
-            return self.cd[0]
-        if value >= self.x[-1]:
-            return self.cd[-1]
-        i = bisect.bisect_right(self.x, value) - 1
-        return self.cd[i] + self._slopes[i] * (value - self.x[i])
+        return self.table(value)
 
 
 def discharge_coefficient(cd, pressure=None, time=None):

@@ -7,13 +7,17 @@ Abaqus VUFLUIDEXCH convention ("a positive mass flow rate indicates flow from th
 secondary fluid cavity") and the fluid exchange guide ("the flow can either be into or out of the primary cavity";
 gas flowing in takes the instantaneous properties of the primary cavity's gas).
 
-Pure arithmetic: the functions accept floats or numpy arrays alike.
+Pure arithmetic: the functions are numba kernels (the compiled right-hand side inlines them; from Python they accept
+floats or numpy arrays alike).
 """
 from __future__ import annotations
+
+from numba import njit
 
 __all__ = ["mass_flux_mass_flow", "volume_flux_mass_flow"]
 
 
+@njit(cache=True, inline="always")
 def mass_flux_mass_flow(mass_flux, area, amplitude=1.0):
     r"""Mass flow from a prescribed mass flux [kg/s].
 
@@ -45,6 +49,7 @@ def mass_flux_mass_flow(mass_flux, area, amplitude=1.0):
     return amplitude * mass_flux * area
 
 
+@njit(cache=True, inline="always")
 def volume_flux_mass_flow(volume_flux, area, rho, amplitude=1.0):
     r"""Mass flow from a prescribed volume flux [kg/s].
 

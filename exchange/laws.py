@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .bulk_viscosity import bulk_viscosity_mass_flow
+from .bulk_viscosity import bulk_viscosity_mass_flow, linear_resistance_mass_flow
 from .discharge import PRESSURE, DischargeTable, discharge_coefficient
 from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
 from .flux import mass_flux_mass_flow, volume_flux_mass_flow
@@ -24,6 +24,11 @@ def _cd(cd, up, t) -> float:
     if isinstance(cd, DischargeTable):
         return cd(up.p) if cd.variable == PRESSURE else cd(t)
     return cd
+
+
+def _cd_breakpoints(cd) -> tuple:
+    """Times where a discharge coefficient of time kinks [s] (the integrator stops there)."""
+    return cd.x if isinstance(cd, DischargeTable) and cd.variable != PRESSURE else ()
 
 
 @dataclass(frozen=True)
@@ -41,6 +46,10 @@ class OrificeLaw:
     def mass_flow(self, up, p_down, area, t):
         return orifice_mass_flow(up.p, up.T, p_down, up.R, up.gamma, area, _cd(self.discharge_coefficient, up, t))
 
+    @property
+    def breakpoints(self) -> tuple:
+        return _cd_breakpoints(self.discharge_coefficient)
+
 
 @dataclass(frozen=True)
 class FabricLeakageLaw:
@@ -55,6 +64,10 @@ class FabricLeakageLaw:
     def mass_flow(self, up, p_down, area, t):
         return fabric_leakage_mass_flow(up.p, up.T, p_down, up.R, up.gamma, area,
                                         _cd(self.discharge_coefficient, up, t), self.open_fraction)
+
+    @property
+    def breakpoints(self) -> tuple:
+        return _cd_breakpoints(self.discharge_coefficient)
 
 
 @dataclass(frozen=True)
@@ -101,6 +114,11 @@ class FluxLaw:
             return mass_flux_mass_flow(self.flux, area, a)
         return volume_flux_mass_flow(self.flux, area, up.rho, a)
 
+    @property
+    def breakpoints(self) -> tuple:
+        """Times where the amplitude kinks [s] (the integrator stops there)."""
+        return tuple(self.amplitude.breakpoints) if self.amplitude is not None else ()
+
 
 @dataclass(frozen=True)
 class BulkViscosityLaw:
@@ -126,7 +144,7 @@ class LinearResistanceLaw:
 
     def mass_flow(self, up, p_down, area, t):
         dp = up.p - p_down
-        return self.conductance * area * dp if dp > 0 else 0.0
+        return linear_resistance_mass_flow(dp, self.conductance * area) if dp > 0 else 0.0
 
 
 LAW_NAMES = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",

@@ -9,13 +9,14 @@ for both (Abaqus Scripting Reference, FluidExchangeProperty, MASS_RATE_LEAK / VO
 """
 from __future__ import annotations
 
-import bisect
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
-__all__ = ["CONSTANT", "LINEAR", "MASS", "VOLUME", "LeakageTable", "leakage_table_mass_flow"]
+__all__ = ["CONSTANT", "LINEAR", "MASS", "VOLUME", "LeakageTable", "leakage_table_mass_flow", "leakage_flow_per_area",
+           "tabulated_leakage_mass_flow"]
 
 MASS = "mass"
 """Table kind: mass flow per unit area [kg/(s m^2)]."""
@@ -71,17 +72,16 @@ class LeakageTable:
     flow: tuple[float, ...]
     kind: str = MASS
     extrapolation: str = LINEAR
-    _slopes: tuple[float, ...] = field(init=False, repr=False, compare=False)
+    rows: tuple = field(init=False, repr=False, compare=False)  # (dp (n,), flow (n,)) arrays for the kernels
 
     def __post_init__(self) -> None:
         dp = tuple(float(x) for x in self.dp)
         flow = tuple(float(x) for x in self.flow)
         _check_options(self.kind, self.extrapolation)
         _check_rows(dp, flow)
-        slopes = tuple((flow[i + 1] - flow[i]) / (dp[i + 1] - dp[i]) for i in range(len(dp) - 1))
         object.__setattr__(self, "dp", dp)
         object.__setattr__(self, "flow", flow)
-        object.__setattr__(self, "_slopes", slopes)
+        object.__setattr__(self, "rows", (np.array(dp), np.array(flow)))
 
     @classmethod
     def from_rows(cls, rows, kind: str = MASS, extrapolation: str = LINEAR) -> LeakageTable:
@@ -106,35 +106,73 @@ class LeakageTable:
         return cls(tuple(r[1] for r in rows), tuple(r[0] for r in rows), kind, extrapolation)
 
     def flow_per_area(self, dp):
-        r"""Flow per unit area at pressure difference ``dp`` [kg/(s m^2)] or [m^3/(s m^2)].
-
-        Linear interpolation between rows; beyond the last row the stated ``extrapolation`` rule. One-directional:
-        ``dp <= 0`` gives 0 (the caller swaps upstream and downstream for reverse flow). Continuous at dp = 0
-        because the first row is (0, 0). Accepts a float (fast path, ``bisect``) or a numpy array.
-        """
+        r"""Flow per unit area at pressure difference ``dp`` [kg/(s m^2)] or [m^3/(s m^2)]:
+        :func:`leakage_flow_per_area` on this table's rows (a float, or a numpy array element by element)."""
+        hold = self.extrapolation == CONSTANT
         if isinstance(dp, np.ndarray):
-            return self._flow_per_area_array(dp)
-        if not dp > 0.0:  # also maps NaN to 0 instead of propagating it silently into an ODE
-            return 0.0
-        i = bisect.bisect_right(self.dp, dp) - 1
-        last = len(self.dp) - 1
-        if i >= last:
-            if self.extrapolation == CONSTANT:
-                return self.flow[last]
-            i = last - 1
-        return max(self.flow[i] + self._slopes[i] * (dp - self.dp[i]), 0.0)
-
-    def _flow_per_area_array(self, dp: np.ndarray) -> np.ndarray:
-        x = np.where(dp > 0.0, dp, 0.0)
-        out = np.interp(x, self.dp, self.flow)
-        if self.extrapolation == LINEAR:
-            beyond = x > self.dp[-1]
-            tail = self.flow[-1] + self._slopes[-1] * (x - self.dp[-1])
-            out = np.where(beyond, np.maximum(tail, 0.0), out)
-        return out
+            return _flow_per_area_each(np.ascontiguousarray(dp, dtype=float).ravel(), *self.rows, hold) \
+                .reshape(dp.shape)
+        return leakage_flow_per_area(float(dp), *self.rows, hold)
 
 
-def leakage_table_mass_flow(table: LeakageTable, dp, area, rho_up=None):
+@njit(cache=True, inline="always")
+def leakage_flow_per_area(dp, dps, flows, hold_last):
+    r"""Flow per unit area of a leakage table at pressure difference ``dp`` [kg/(s m^2)] or [m^3/(s m^2)].
+
+    .. math::
+
+        f(\Delta p) = \max\Big(f_i + \frac{f_{i+1} - f_i}{\Delta p_{i+1} - \Delta p_i}(\Delta p - \Delta p_i),\;
+        0\Big), \qquad \Delta p_i \le \Delta p < \Delta p_{i+1}
+
+    Linear interpolation between rows; beyond the last row the last segment continued (clamped at zero flow), or
+    the last value held when ``hold_last``. One-directional: ``dp <= 0`` (and NaN) gives 0 (the caller swaps
+    upstream and downstream for reverse flow). Continuous at dp = 0 because the first row is (0, 0).
+
+    Parameters
+    ----------
+    dp : float
+        p_up − p_down [Pa].
+    dps, flows : (n,) float
+        The rows of a validated :class:`LeakageTable` (``table.rows``): |Δp| [Pa], first 0 and strictly
+        increasing, and the flow per area at each, first 0 and >= 0.
+    hold_last : bool
+        Extrapolation "constant" (True) or "linear" (False).
+
+    References
+    ----------
+    Abaqus Keywords Reference, *FLUID EXCHANGE PROPERTY, TYPE=MASS RATE LEAKAGE / VOLUME RATE LEAKAGE.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> dps, flows = np.array([0.0, 1000.0, 3000.0]), np.array([0.0, 2.0, 3.0])
+    >>> leakage_flow_per_area(2000.0, dps, flows, False), leakage_flow_per_area(5000.0, dps, flows, False)
+    (2.5, 4.0)
+    >>> leakage_flow_per_area(5000.0, dps, flows, True), leakage_flow_per_area(-1.0, dps, flows, True)
+    (3.0, 0.0)
+    """
+    if not dp > 0.0:  # also maps NaN to 0 instead of propagating it silently into an ODE
+        return 0.0
+    last = dps.size - 1
+    i = np.searchsorted(dps, dp, side="right") - 1
+    if i >= last:
+        if hold_last:
+            return flows[last]
+        i = last - 1
+    slope = (flows[i + 1] - flows[i]) / (dps[i + 1] - dps[i])
+    return max(flows[i] + slope * (dp - dps[i]), 0.0)
+
+
+@njit(cache=True)
+def _flow_per_area_each(dp, dps, flows, hold_last):
+    out = np.empty(dp.size)
+    for k in range(dp.size):
+        out[k] = leakage_flow_per_area(dp[k], dps, flows, hold_last)
+    return out
+
+
+@njit(cache=True, inline="always")
+def tabulated_leakage_mass_flow(dp, area, rho_up, dps, flows, hold_last, volume):
     r"""Mass flow through a tabulated leakage surface [kg/s].
 
     .. math::
@@ -142,16 +180,20 @@ def leakage_table_mass_flow(table: LeakageTable, dp, area, rho_up=None):
         \dot m = A\, f(\Delta p) \quad \text{(MASS RATE LEAKAGE)}, \qquad
         \dot m = \rho_e\, A\, f(\Delta p) \quad \text{(VOLUME RATE LEAKAGE)}
 
+    with f of :func:`leakage_flow_per_area`.
+
     Parameters
     ----------
-    table : LeakageTable
-        Validated flow-per-area table.
-    dp : float or ndarray
-        p_up − p_down [Pa]; ``dp <= 0`` gives 0 (one-directional: the caller swaps the cavities for reverse flow).
-    area : float or ndarray
+    dp : float
+        p_up − p_down [Pa]; ``dp <= 0`` gives 0.
+    area : float
         Leakage area A [m^2], >= 0.
-    rho_up : float or ndarray, optional
-        Upstream gas density ρ_e [kg/m^3]; required for a volume table.
+    rho_up : float
+        Upstream gas density ρ_e [kg/m^3] (used by a volume table only).
+    dps, flows, hold_last
+        The table, as :func:`leakage_flow_per_area`.
+    volume : bool
+        The flows are volume flows per area [m^3/(s m^2)] (VOLUME RATE LEAKAGE), else mass flows [kg/(s m^2)].
 
     Notes
     -----
@@ -161,16 +203,43 @@ def leakage_table_mass_flow(table: LeakageTable, dp, area, rho_up=None):
 
     Examples
     --------
+    >>> import numpy as np
+    >>> dps, flows = np.array([0.0, 1.0e4]), np.array([0.0, 0.5])
+    >>> round(tabulated_leakage_mass_flow(5.0e3, 0.02, 1.2, dps, flows, False, True), 12)
+    0.006
+    """
+    q = leakage_flow_per_area(dp, dps, flows, hold_last)
+    if volume:
+        return rho_up * area * q
+    return area * q
+
+
+def leakage_table_mass_flow(table: LeakageTable, dp: float, area: float, rho_up=None) -> float:
+    r"""Mass flow through a tabulated leakage surface [kg/s]: :func:`tabulated_leakage_mass_flow` on a
+    :class:`LeakageTable`.
+
+    Parameters
+    ----------
+    table : LeakageTable
+        Validated flow-per-area table.
+    dp : float
+        p_up − p_down [Pa]; ``dp <= 0`` gives 0 (one-directional: the caller swaps the cavities for reverse flow).
+    area : float
+        Leakage area A [m^2], >= 0.
+    rho_up : float, optional
+        Upstream gas density ρ_e [kg/m^3]; required for a volume table.
+
+    Examples
+    --------
     >>> t = LeakageTable.from_rows([(0.0, 0.0), (1.0e4, 0.5)], kind="volume")
     >>> round(leakage_table_mass_flow(t, 5.0e3, 0.02, rho_up=1.2), 12)
     0.006
     """
-    q = table.flow_per_area(dp)
-    if table.kind == VOLUME:
-        if rho_up is None:
-            raise ValueError("a VOLUME RATE LEAKAGE table needs the upstream density rho_up [kg/m^3]")
-        return rho_up * area * q
-    return area * q
+    volume = table.kind == VOLUME
+    if volume and rho_up is None:
+        raise ValueError("a VOLUME RATE LEAKAGE table needs the upstream density rho_up [kg/m^3]")
+    return tabulated_leakage_mass_flow(float(dp), float(area), float(rho_up) if volume else 0.0, *table.rows,
+                                       table.extrapolation == CONSTANT, volume)
 
 
 def _check_options(kind: str, extrapolation: str) -> None:

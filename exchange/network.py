@@ -20,6 +20,7 @@ import numpy as np
 from cavity.cavity import CavityState
 from .activation import activated_area, arm_pop_vents
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
+from .law_kinks import kink_switches
 from .orifice import LINEAR_BELOW
 from .wall_heat import wall_heat_flows
 from .vent import GasPoint
@@ -149,6 +150,7 @@ class Network:
     def breakpoints(self) -> tuple:
         pts = [b for cav in self.cavities for b in cav.breakpoints]
         pts += [b for ex in self.exchanges if ex.activation is not None for b in ex.activation.breakpoints]
+        pts += [b for ex in self.exchanges for b in getattr(ex.law, "breakpoints", ())]  # tables of time
         return tuple(pts)
 
     def states(self, t: float, y) -> list:
@@ -327,6 +329,7 @@ class Network:
                     kind, level = ("release", RELEASED_ABOVE) if self.equalised[j] else ("equalise", EQUALISED_BELOW)
                     out.append(_labelled(lambda t, y, j=j, c=level: self._dp_relative(t, y, j) / c - 1.0,
                                          f"{ex.name}:{kind}"))
+                out += kink_switches(self, j)  # rows of a Cd table of pressure or of a leakage table
             act = ex.activation
             if act is None or act.pop_pressure is None or self.popped[j]:
                 continue

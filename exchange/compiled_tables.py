@@ -1,0 +1,119 @@
+"""The lowest kernels of the compiled path: tables (piecewise linear, steps, cubic splines), gas coefficient rows,
+and the columns of the state scratch; shared by :mod:`exchange.compiled_rhs` and :mod:`exchange.compiled_sources`
+(array layout: :mod:`exchange.compiled_rhs`). Each mirrors the Python method named in its docstring.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
+
+P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # columns of the state scratch
+
+
+@njit(cache=True, inline="always")
+def table_value(tx, ty, ti, k, x):
+    """:meth:`cavity.tables.Table.__call__` of table k at x (piecewise linear, constant or linear ends)."""
+    s, n, lin = ti[k, 0], ti[k, 1], ti[k, 2]
+    if n == 1:
+        return ty[s]
+    if x <= tx[s] and lin == 0:
+        return ty[s]
+    if x >= tx[s + n - 1] and lin == 0:
+        return ty[s + n - 1]
+    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
+    i = min(max(i, 0), n - 2) + s
+    w = (x - tx[i]) / (tx[i + 1] - tx[i])
+    return ty[i] + w * (ty[i + 1] - ty[i])
+
+
+@njit(cache=True, inline="always")
+def table_slope(tx, ty, ti, k, x):
+    """:meth:`cavity.tables.Table.slope` of table k at x (from the right at a breakpoint)."""
+    s, n, lin = ti[k, 0], ti[k, 1], ti[k, 2]
+    if n == 1 or (lin == 0 and (x < tx[s] or x >= tx[s + n - 1])):
+        return 0.0
+    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
+    i = min(max(i, 0), n - 2) + s
+    return (ty[i + 1] - ty[i]) / (tx[i + 1] - tx[i])
+
+
+@njit(cache=True, inline="always")
+def step_value(tx, ty, ti, k, x):
+    """Step table k at x: ty[i] for tx[i] <= x < tx[i+1] (right limit at a step; tx[0] is -inf)
+    (:meth:`cases.area_track.AreaTrack.area_in` on a fixed surface)."""
+    s, n = ti[k, 0], ti[k, 1]
+    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
+    return ty[s + max(i, 0)]
+
+
+@njit(cache=True, inline="always")
+def spline_value(tx, ty, ti, k, x):
+    """(value, slope) of the cubic spline k at x: knots in table k, coefficients (4 per piece, highest power
+    first, as scipy's PPoly) in table k + 1; held at its ends, slope 0 outside (:class:`cases.geometry.
+    WrappedVolume`)."""
+    s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]
+    inside = tx[s] <= x <= tx[s + n - 1]
+    x = min(max(x, tx[s]), tx[s + n - 1])
+    i = min(max(np.searchsorted(tx[s:s + n], x, side="right") - 1, 0), n - 2)
+    d = x - tx[s + i]
+    q = c + 4 * i
+    value = ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3]
+    slope = (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2] if inside else 0.0
+    return value, slope
+
+
+@njit(cache=True, inline="always")
+def range_of(breaks, T):
+    """Index of the temperature range holding T [K] (bisect_right on the interior breaks)."""
+    return np.searchsorted(breaks, T, side="right") if breaks.size else 0
+
+
+@njit(cache=True, inline="always")
+def mixture_row(rows, n, i, out):
+    """Mole-weighted row of range i (:meth:`cavity.gas.Mixture._combined`): Σ n_s·rows[s, i] into out (7,)."""
+    for c in range(7):
+        out[c] = n[0] * rows[0, i, c]
+    for s in range(1, n.size):
+        if n[s] != 0.0:
+            for c in range(7):
+                out[c] += n[s] * rows[s, i, c]
+
+
+@njit(cache=True, inline="always")
+def row_enthalpy(r, T):
+    """H(T) [J] of a coefficient row (:meth:`cavity.gas.Mixture.enthalpy`)."""
+    return T * (r[0] + T * (r[1] / 2.0 + T * (r[2] / 3.0 + T * (r[3] / 4.0 + T * r[5] / 5.0)))) - r[4] / T + r[6]
+
+
+@njit(cache=True, inline="always")
+def row_cp(r, T):
+    """Cp(T) [J/K] of a coefficient row (:meth:`cavity.gas.Mixture.heat_capacity_p`)."""
+    return r[0] + T * (r[1] + T * (r[2] + T * (r[3] + T * r[5]))) + r[4] / (T * T)
+
+
+@njit(cache=True, inline="always")
+def side(st, amb, i, c):
+    """Column c of the gas point of cavity i, or of ambient (i < 0)."""
+    return amb[c] if i < 0 else st[i, c]
+
+
+@njit(cache=True, inline="always")
+def volume_of(ci, cf, tx, ty, ti, i, t, y):
+    """(V, dV/dt) of cavity i's geometric volume [m^3, m^3/s] (FixedVolume, TableVolume, ScaledMeshVolume, a
+    volume wrapped around prescribed bodies: a cubic spline of time, kind 3, or around the dynamic body: of its
+    displacement, kind 4)."""
+    kind = ci[i, 2]
+    if kind == 0:
+        return cf[i, 5], 0.0
+    k = ci[i, 3]
+    if kind == 3:
+        return spline_value(tx, ty, ti, k, t)
+    if kind == 4:  # a spline of the dynamic body's displacement y[ci[i, 6]]: dV/dt = dV/ds·v
+        value, slope = spline_value(tx, ty, ti, k, y[ci[i, 6]])
+        return value, slope * y[ci[i, 6] + 1]
+    if kind == 1:
+        return table_value(tx, ty, ti, k, t), table_slope(tx, ty, ti, k, t)
+    s = table_value(tx, ty, ti, k, t)
+    return s * s * s * cf[i, 5], 3.0 * s * s * table_slope(tx, ty, ti, k, t) * cf[i, 5]
