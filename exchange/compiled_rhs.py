@@ -49,7 +49,7 @@ from .compiled_sources import inflator_mass_flow, law_flow, liquid_state, prescr
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, mixture_row, range_of, row_cp,
                               row_enthalpy, side, spline_value, step_value, table_value, volume_of)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
-from .orifice import LINEAR_BELOW, critical_pressure_ratio, orifice_mass_flow  # noqa: F401 (re-exported)
+from .orifice import LINEAR_BELOW, critical_pressure_ratio
 
 NEWTON_RTOL = 1e-10  # cavity.tolerances.TOL.newton_rtol
 NEWTON_MAX = 60

@@ -313,7 +313,8 @@ class Network:
         with a pop pressure not yet open, the pop crossing, or while holding, the drop below it and the end of
         the hold time. The orifice law (and fabric leakage, which uses it) changes form at |Δp|/p =
         :data:`~exchange.orifice.LINEAR_BELOW` (a C¹ join): "join" stops the integrator there too, so that no
-        step and no dense output straddles it.
+        step and no dense output straddles it. A table law stops at its rows in the same way ("kink<row>":
+        :func:`exchange.law_kinks.kink_switches`).
         """
         out = []
         for j, ex in enumerate(self.exchanges):

@@ -28,7 +28,8 @@ from tests.test_exchange_scenes import fill_with_pop
 LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fill_constant", "compression_mesh",
              "airbag_vented", "airbag_impactor", "airbag_impactor_dynamic", "seal_vent", "seal_vent_nodes",
              "vent_bar_edge",  # bodies: area steps and volume splines, the dynamic body's areas and switches
-             "deck_box_blowdown", "deck_vented_box_blockage", "deck_wang_nefske_bag"]
+             "deck_box_blowdown", "deck_vented_box_blockage", "deck_wang_nefske_bag",
+             "deck_hydraulic_two_cavity"]  # hydraulic cavities, bulk viscosity and a volume-rate leakage table
 
 
 def model_of(name):
@@ -55,11 +56,11 @@ def pressures(model, traj, times):
 
 def test_each_flow_law_is_one_function_on_both_paths():
     """The compiled right-hand side inlines the very laws Python calls (numba dispatchers), no mirror copies."""
-    from exchange import compiled_rhs, fabric
+    from exchange import compiled_rhs, compiled_sources, fabric
 
-    assert compiled_rhs.orifice_mass_flow is orifice.orifice_mass_flow
-    assert compiled_rhs.fabric_leakage_mass_flow is fabric.fabric_leakage_mass_flow
-    assert compiled_rhs.graefe_mass_flow is fabric.graefe_mass_flow
+    assert compiled_sources.orifice_mass_flow is orifice.orifice_mass_flow  # (law_flow lives there)
+    assert compiled_sources.fabric_leakage_mass_flow is fabric.fabric_leakage_mass_flow
+    assert compiled_sources.graefe_mass_flow is fabric.graefe_mass_flow
     assert compiled_rhs.critical_pressure_ratio is orifice.critical_pressure_ratio
     assert hasattr(orifice.orifice_mass_flow, "py_func")  # compiled, callable from Python
 
