@@ -47,7 +47,7 @@ from numba import njit
 
 from .compiled_sources import inflator_mass_flow, law_flow, liquid_state, prescribed_flow
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, mixture_row, range_of, row_cp,
-                              row_enthalpy, side, spline_value, step_value, table_value, volume_of)
+                              row_enthalpy, side, spline_value, step_value, table_value, eos_volume)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 from .orifice import LINEAR_BELOW, critical_pressure_ratio
 
@@ -121,13 +121,7 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
             T = T_guess[i]
             mixture_row(rows, n, range_of(breaks, T), row)
         T_guess[i] = T
-        Vg, rate = volume_of(ci, cf, tx, ty, ti, i, t, y)
-        Vt = Vg + cf[i, 1]
-        if Vt > cf[i, 2]:
-            V_eos = Vt
-        else:
-            V_eos = cf[i, 2]
-            rate = 0.0
+        Vt, V_eos, rate = eos_volume(ci, cf, tx, ty, ti, i, t, y)
         p = nmol * R_U * T / V_eos
         st[i, P], st[i, TT], st[i, V], st[i, DV], st[i, MASS] = p, T, Vt, rate, m
         if m > 0.0:

@@ -17,7 +17,7 @@ from cavity.inflator import tank_test_mass_flow
 from .bulk_viscosity import bulk_viscosity_mass_flow, linear_resistance_mass_flow
 from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, range_of, row_cp, side, table_slope,
-                              table_value, volume_of)
+                              table_value, eos_volume)
 from .flux import mass_flux_mass_flow, volume_flux_mass_flow
 from .leakage_table import tabulated_leakage_mass_flow
 from .orifice import orifice_mass_flow
@@ -30,13 +30,7 @@ def liquid_state(ci, cf, tx, ty, ti, i, t, y, st):
     p from :func:`cavity.hydraulic.hydraulic_pressure` (−inf when empty)."""
     k = ci[i, 0]
     m = y[k] if y[k] > 0.0 else 0.0
-    Vg, rate = volume_of(ci, cf, tx, ty, ti, i, t, y)
-    Vt = Vg + cf[i, 1]
-    if Vt > cf[i, 2]:
-        V_eos = Vt
-    else:
-        V_eos = cf[i, 2]
-        rate = 0.0
+    Vt, V_eos, rate = eos_volume(ci, cf, tx, ty, ti, i, t, y)
     T = table_value(tx, ty, ti, ci[i, 8], t)
     rho_ref = cf[i, 6] * math.exp(-cf[i, 10] * (T - cf[i, 9]))
     rho = m / V_eos

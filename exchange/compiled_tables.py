@@ -117,3 +117,15 @@ def volume_of(ci, cf, tx, ty, ti, i, t, y):
         return table_value(tx, ty, ti, k, t), table_slope(tx, ty, ti, k, t)
     s = table_value(tx, ty, ti, k, t)
     return s * s * s * cf[i, 5], 3.0 * s * s * table_slope(tx, ty, ti, k, t) * cf[i, 5]
+
+
+@njit(cache=True, inline="always")
+def eos_volume(ci, cf, tx, ty, ti, i, t, y):
+    """(V, V_eos, dV/dt) of cavity i [m^3, m^3, m^3/s]: its geometric volume plus the added volume, the volume of
+    the equation of state (:func:`cavity.volume.effective_volume`: at least the minimum volume), and the rate of
+    change, none while held at the minimum."""
+    Vg, rate = volume_of(ci, cf, tx, ty, ti, i, t, y)
+    Vt = Vg + cf[i, 1]
+    if Vt > cf[i, 2]:
+        return Vt, Vt, rate
+    return Vt, cf[i, 2], 0.0
