@@ -95,6 +95,8 @@ class CompiledNetwork:
         for j in range(len(net.exchanges)):
             eq[j] = net.equalised[j]
             op[j] = 0 if model[12][j, 6] == 1 and not net.popped[j] else 1
+            if model[12][j, 6] == 1:  # a pop vent's area at activation (DELTA LEAKAGE AREA)
+                model[13][j, 9] = net.area_at_activation[j] or 0.0
         seg_end = float(seg_end)
 
         def f(t, y):

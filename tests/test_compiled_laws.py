@@ -238,3 +238,20 @@ def test_closed_hydraulic_cavity_follows_the_log_law_compiled(tmp_path):
     V, p = r.column("seal.volume"), r.column("seal.pressure")
     ref = P0 + K * np.log(V[0] / V)
     assert np.max(np.abs(p - ref) / ref) <= 1e-10
+
+
+@pytest.mark.parametrize("name, method", [("orifice Cd(p)", "LSODA"), ("mass_flux", "RK45"),
+                                          ("bulk_viscosity", "BDF"), ("pop delta", "RK45")])
+def test_other_methods_run_on_the_compiled_right_hand_side(tmp_path, name, method):
+    """solve_ivp's other methods on the compiled right-hand side of these laws agree with the Python one."""
+    if name == "pop delta":
+        data = fill_with_pop(5.0e4, 0.004)
+        data["exchange"][0]["delta_area"] = True
+        model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    else:
+        model = law_model(tmp_path, name, to_cavity=True)
+    runs = {c: run(replace(model, options=replace(model.options, method=method, compiled=c))) for c in (None, False)}
+    fast, slow = runs[None], runs[False]
+    assert (fast.summary["solver"]["path"], slow.summary["solver"]["path"]) == ("python, compiled rhs", "python")
+    scale = np.maximum(np.max(np.abs(slow.history), axis=0), 1e-300)
+    assert np.max(np.abs(fast.history - slow.history) / scale) < 100 * model.options.rtol
