@@ -1,8 +1,10 @@
 """Normal contact mechanics: pressure-overclosure laws, contact damping and CPRESS (issue 7).
 
-Pure scalar functions and small frozen dataclasses after Abaqus Analysis User's Guide 37.1.2 ("Contact
-pressure-overclosure relationships") and 37.1.3 ("Contact damping"). Scenes evaluate the same laws on arrays of
-seat nodes in :mod:`cases.seat_contact` (``[[contact]]`` tables, docs/contact.md).
+Small frozen dataclasses and the laws by law object after Abaqus Analysis User's Guide 37.1.2 ("Contact
+pressure-overclosure relationships") and 37.1.3 ("Contact damping"); each formula is written once, as a numba
+kernel of :mod:`exchange.contact_laws` (which the compiled path calls too), and these functions pick it by law
+object. Scenes evaluate the same kernels on the nodes of a seat (:mod:`cases.seat_contact`, ``[[contact]]``
+tables, docs/contact.md).
 
 Sign conventions (SI throughout):
 
@@ -15,6 +17,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from typing import Optional, Union
+
+from exchange.contact_laws import critical_damping_coefficient as _critical_damping_coefficient
+from exchange.contact_laws import damping_coefficient as _damping_coefficient
+from exchange.contact_laws import penalty_pressure, penalty_stiffness, softened_pressure, softened_stiffness
 
 __all__ = [
     "Hard", "LinearPenalty", "Softened", "ContactDamping", "DEFAULT_CRITICAL_FRACTION",
@@ -137,10 +143,9 @@ def overclosure_pressure(h: float, law: Law) -> float:
     (100000.0, 0.0, 743656)
     """
     if isinstance(law, LinearPenalty):
-        return law.stiffness * h if h > 0.0 else 0.0
+        return penalty_pressure(float(h), law.stiffness)
     if isinstance(law, Softened):
-        x = h / law.c0 + 1.0
-        return law.p0 / (math.e - 1.0) * x * math.expm1(x) if x > 0.0 else 0.0
+        return softened_pressure(float(h), law.c0, law.p0)
     if isinstance(law, Hard):
         raise TypeError("hard contact has no pressure-overclosure function: its pressure is the constraint "
                         "reaction (use hard_contact_pressure or pass the multiplier to cpress)")
@@ -161,10 +166,9 @@ def contact_stiffness(h: float, law: Law) -> float:
     2.581977
     """
     if isinstance(law, LinearPenalty):
-        return law.stiffness if h > 0.0 else 0.0
+        return penalty_stiffness(float(h), law.stiffness)
     if isinstance(law, Softened):
-        x = h / law.c0 + 1.0
-        return law.p0 / (law.c0 * (math.e - 1.0)) * (math.expm1(x) + x * math.exp(x)) if x > 0.0 else 0.0
+        return softened_stiffness(float(h), law.c0, law.p0)
     if isinstance(law, Hard):
         raise TypeError("hard contact has infinite stiffness")
     raise TypeError(f"unknown contact law {law!r}")
@@ -223,11 +227,7 @@ def damping_coefficient(clearance: float, mu0: float, c0: float, eta: float = 0.
     >>> [damping_coefficient(c, 10.0, 1e-3, 0.2) for c in (0.0, 2e-4, 6e-4, 1e-3)]
     [10.0, 10.0, 5.0, 0.0]
     """
-    if clearance <= eta * c0:
-        return mu0
-    if clearance >= c0:
-        return 0.0
-    return mu0 * (c0 - clearance) / ((1.0 - eta) * c0)
+    return _damping_coefficient(float(clearance), float(mu0), float(c0), float(eta))
 
 
 def damping_pressure(v_rel: float, clearance: float, rule: ContactDamping) -> float:
@@ -286,7 +286,7 @@ def critical_damping_coefficient(fraction: float, mass: float, stiffness: float)
                          "it is not available for hard (kinematic) contact")
     if fraction < 0.0 or not mass > 0.0:
         raise ValueError(f"need fraction >= 0 and mass > 0 kg, got {fraction!r}, {mass!r}")
-    return fraction * math.sqrt(4.0 * mass * stiffness)
+    return _critical_damping_coefficient(float(fraction), float(mass), float(stiffness))
 
 
 def default_critical_fraction(law: Law) -> float:

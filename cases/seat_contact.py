@@ -1,6 +1,7 @@
 """Contact of a dynamic rigid body with the nodes of a fixed seat: gaps, nodal CPRESS, the force on the body.
 
-The laws are those of :mod:`cases.contact`, here evaluated on arrays of seat nodes. The body translates along
+The laws and their evaluation on the seat's nodes are the numba kernels of :mod:`exchange.contact_laws` (the
+compiled path calls the same ones). The body translates along
 its unit axis by s [m]; each seat node i has a tributary area A_i [m²] (every face gives A_e/N_e to each of its
 N_e nodes, the same split as the blockage rule A_eb = A_e·N_c/N_e) and a gap measured along the axis,
 
@@ -22,14 +23,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exchange.contact_laws import (CRITICAL, EXPLICIT, HARD, LINEAR, NO_DAMPING, SOFTENED, STANDARD,
+                                   held_side, seat_force, seat_nodal)
+
 from .contact import ContactDamping, Hard, LinearPenalty, Softened
 
 __all__ = ["SeatContact", "ray_gaps", "nodal_areas", "STATUS_CODES"]
 
 #: Codes of the per-node status in contact.npz and the VTK series.
 STATUS_CODES = {"open": 0, "closed": 1, "VD": 2}
-#: A hard-contact node within this fraction of the seat size of the body counts as closed.
-TOUCH = 1e-7
 
 
 def nodal_areas(surface) -> np.ndarray:
@@ -105,84 +107,38 @@ class SeatContact:
         self.seat_area = float(self.areas[reach].sum())
         self.size = math.sqrt(max(float(self.areas.sum()), 1e-300))
         self.hard = isinstance(self.law, Hard)
+        self.table = np.ascontiguousarray(np.column_stack([self.g0, self.sigma, self.areas, reach]), dtype=float)
+        self.law_vector = self._law_vector()
+
+    def _law_vector(self) -> np.ndarray:
+        """The seat's parameters for :mod:`exchange.contact_laws` (:data:`~exchange.contact_laws.SEAT_PARAMETERS`)."""
+        law, d = self.law, self.damping
+        kind, a, b = (HARD, 0.0, 0.0) if self.hard else (LINEAR, self.law.stiffness, 0.0) \
+            if isinstance(law, LinearPenalty) else (SOFTENED, law.c0, law.p0)
+        if self.critical_fraction is not None:
+            damping = (CRITICAL, 0.0, 0.0, 0.0, self.critical_fraction)
+        elif d is None:
+            damping = (NO_DAMPING, 0.0, 0.0, 0.0, 0.0)
+        else:
+            damping = (STANDARD if d.style == "standard" else EXPLICIT, d.mu0, d.c0, d.eta, 0.0)
+        return np.array((kind, a, b) + damping + (self.mass, self.seat_area, self.size), dtype=float)
 
     def gaps(self, s: float) -> np.ndarray:
         return self.g0 + self.sigma * s
 
-    def closed(self, g) -> np.ndarray:
-        if self.hard:
-            return g <= TOUCH * self.size
-        if isinstance(self.law, LinearPenalty):
-            return g <= 0.0
-        return g < self.law.c0
-
-    def elastic(self, g) -> np.ndarray:
-        """Pressure from the pressure-overclosure law per node [Pa] (0 for hard contact: a reaction)."""
-        h = -g
-        if isinstance(self.law, LinearPenalty):
-            return np.where(h > 0.0, self.law.stiffness * h, 0.0)
-        if isinstance(self.law, Softened):
-            x = np.where(np.isfinite(h), h / self.law.c0 + 1.0, -1.0)
-            return np.where(x > 0.0, self.law.p0 / (math.e - 1.0) * x * np.expm1(np.maximum(x, 0.0)), 0.0)
-        return np.zeros_like(g)
-
-    def stiffness(self, g) -> np.ndarray:
-        """dp/dh per node [Pa/m]."""
-        h = -g
-        if isinstance(self.law, LinearPenalty):
-            return np.where(h > 0.0, self.law.stiffness, 0.0)
-        x = np.where(np.isfinite(h), h / self.law.c0 + 1.0, -1.0)
-        xp = np.maximum(x, 0.0)
-        return np.where(x > 0.0, self.law.p0 / (self.law.c0 * (math.e - 1.0)) * (np.expm1(xp) + xp * np.exp(xp)),
-                        0.0)
-
-    def viscous(self, g, v) -> tuple:
-        """(damping pressure per node [Pa], which open nodes are within the damping clearance)."""
-        v_rel = -self.sigma * v
-        closed = self.closed(g)
-        if self.critical_fraction is not None:  # c_i = ξ·√(4·m_i·k_i), μ_i = c_i / A_i (explicit: closed only)
-            m_i = self.mass * self.areas / self.seat_area
-            k_i = self.areas * self.stiffness(g)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                mu = np.where(closed, self.critical_fraction * np.sqrt(4.0 * m_i * k_i) / self.areas, 0.0)
-            return mu * v_rel, np.zeros_like(closed)
-        if self.damping is None:
-            return np.zeros_like(g), np.zeros_like(closed)
-        d = self.damping
-        c = np.where(closed, np.maximum(g, 0.0), g)  # as cases.contact.cpress: a closed node's clearance >= 0
-        if d.style == "explicit":
-            mu = np.where(closed & (c <= 0.0), d.mu0, 0.0)
-            return mu * v_rel, np.zeros_like(closed)
-        ramp = (1.0 - d.eta) * d.c0
-        with np.errstate(invalid="ignore", divide="ignore"):
-            mu = np.where(c <= d.eta * d.c0, d.mu0, np.where(c >= d.c0, 0.0, d.mu0 * (d.c0 - c) / ramp))
-        within = ~closed & (c < d.c0)
-        return mu * v_rel, within
-
     def force(self, s: float, v: float) -> float:
-        """Force of the seat on the body along the axis [N] (law and damping; hard contact: damping only)."""
-        g = self.gaps(s)
-        pv, _ = self.viscous(g, v)
-        p = self.elastic(g) + pv
-        return float(np.sum(np.where(self.reach, self.sigma * self.areas * p, 0.0)))
+        """Force of the seat on the body along the axis [N] (law and damping; hard contact: damping only):
+        :func:`exchange.contact_laws.seat_force`."""
+        return seat_force(float(s), float(v), self.table, self.law_vector)
 
     def held_sigma(self, s: float) -> float:
-        """Side σ of the closed nodes of a hard contact (0 if none)."""
-        closed = self.closed(self.gaps(s)) & self.reach
-        return float(self.sigma[closed][0]) if closed.any() else 0.0
+        """Side σ of the closed nodes of a hard contact (0 if none): :func:`exchange.contact_laws.held_side`."""
+        return held_side(float(s), self.table, self.law_vector)
 
     def nodal(self, s: float, v: float, reaction: float = 0.0) -> tuple:
-        """(CPRESS per node [Pa], status code per node) at (s, v); ``reaction`` is a held hard contact's F_c [N]."""
-        g = self.gaps(s)
-        closed = self.closed(g) & self.reach
-        pv, within = self.viscous(g, v)
-        p = self.elastic(g) + pv
-        if self.hard and closed.any():
-            p = np.where(closed, p + reaction / float(self.areas[closed].sum()), p)
-        status = np.where(closed, STATUS_CODES["closed"], np.where(within & self.reach, STATUS_CODES["VD"],
-                                                                    STATUS_CODES["open"]))
-        p = np.where(closed | (within & self.reach), p, 0.0)
-        return p, status.astype(np.uint8)
+        """(CPRESS per node [Pa], status code per node) at (s, v); ``reaction`` is a held hard contact's F_c [N]
+        (:func:`exchange.contact_laws.seat_nodal`)."""
+        return seat_nodal(float(s), float(v), float(reaction), self.table, self.law_vector)
 
     def thresholds(self) -> np.ndarray:
         """Values of s where the force has a kink or a jump: each distinct g0 reaching touch, c0 (softened),

@@ -1,0 +1,235 @@
+"""Normal-contact laws as numba kernels, each written once: pressure-overclosure, contact damping, and the seat's
+nodal pressures and force on a rigid body (used by :mod:`cases.contact`, :mod:`cases.seat_contact` and the
+compiled path, :mod:`exchange.compiled_seat`).
+
+After Abaqus Analysis User's Guide 37.1.2 ("Contact pressure-overclosure relationships") and 37.1.3 ("Contact
+damping"); ``docs/contact.md``. Sign conventions (SI): overclosure h [m] > 0 is penetration, clearance c = −h;
+the relative normal velocity v_rel = dh/dt [m/s] > 0 while approaching; pressures [Pa] > 0 in compression.
+
+A seat is a table of nodes (``nodes`` (n, 4): g0 [m] the gap at s = 0, σ = ±1 its side, A [m²] the tributary
+area, 1 if the body can reach the node) and a parameter vector (``law`` (:data:`SEAT_PARAMETERS`)); the body
+translates by s [m] along its axis with speed v [m/s], node i has gap g_i = g0_i + σ_i·s, overclosure −g_i and
+approach speed −σ_i·v, and the seat pushes the body along σ_i·axis with A_i·p_i.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+__all__ = ["HARD", "LINEAR", "SOFTENED", "NO_DAMPING", "STANDARD", "EXPLICIT", "CRITICAL", "SEAT_PARAMETERS",
+           "TOUCH", "penalty_pressure", "penalty_stiffness", "softened_pressure", "softened_stiffness",
+           "damping_coefficient", "critical_damping_coefficient", "seat_node", "seat_force", "seat_nodal",
+           "held_side"]
+
+HARD, LINEAR, SOFTENED = 0, 1, 2  # pressure-overclosure law codes
+NO_DAMPING, STANDARD, EXPLICIT, CRITICAL = 0, 1, 2, 3  # damping definition codes
+#: Entries of a seat's parameter vector ``law``.
+SEAT_PARAMETERS = ("law", "stiffness or c0 [m]", "p0 [Pa]", "damping", "mu0 [Pa s/m]", "damping c0 [m]", "eta",
+                   "critical fraction", "body mass [kg]", "reachable seat area [m^2]", "seat size [m]")
+#: A hard-contact node within this fraction of the seat size of the body counts as closed.
+TOUCH = 1e-7
+
+
+@njit(cache=True, inline="always")
+def penalty_pressure(h, stiffness):
+    r"""Linear (penalty) pressure-overclosure law [Pa].
+
+    .. math:: p = k\,\max(h, 0)
+
+    ``h`` overclosure [m], ``stiffness`` k [Pa/m] > 0. Abaqus Analysis User's Guide 37.1.2,
+    *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR ("slope of the pressure-overclosure curve").
+
+    >>> penalty_pressure(1e-4, 1e9), penalty_pressure(-1e-4, 1e9)
+    (100000.0, 0.0)
+    """
+    return stiffness * h if h > 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def penalty_stiffness(h, stiffness):
+    """dp/dh of :func:`penalty_pressure` [Pa/m]: k while penetrating, 0 open.
+
+    >>> penalty_stiffness(1e-4, 1e9), penalty_stiffness(-1e-4, 1e9)
+    (1000000000.0, 0.0)
+    """
+    return stiffness if h > 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def softened_pressure(h, c0, p0):
+    r"""Exponential (softened) pressure-overclosure law [Pa].
+
+    .. math:: p = \begin{cases} 0 & h \le -c_0 \\
+        \dfrac{p_0}{e - 1}\,x\,(e^{x} - 1), \quad x = \dfrac{h}{c_0} + 1 & h > -c_0 \end{cases}
+
+    ``h`` overclosure [m] (−inf: never touching), ``c0`` clearance [m] > 0 at which the pressure is zero, ``p0``
+    pressure [Pa] > 0 at zero clearance. p(0) = p0 and p(−c0) = 0 with zero slope (C¹ at first touch); the
+    Abaqus/Explicit stiffness cap k_max is not modelled. Abaqus Analysis User's Guide 37.1.2, *SURFACE BEHAVIOR,
+    PRESSURE-OVERCLOSURE=EXPONENTIAL (data c0, p0; checked by its end conditions, docs/contact.md).
+
+    >>> softened_pressure(0.0, 1e-3, 1e5), softened_pressure(-1e-3, 1e-3, 1e5), round(softened_pressure(1e-3, 1e-3, 1e5))
+    (100000.0, 0.0, 743656)
+    """
+    x = h / c0 + 1.0
+    return p0 / (math.e - 1.0) * x * math.expm1(x) if x > 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def softened_stiffness(h, c0, p0):
+    r"""dp/dh of :func:`softened_pressure` [Pa/m].
+
+    .. math:: \frac{dp}{dh} = \frac{p_0}{c_0 (e - 1)}\left[(e^{x} - 1) + x e^{x}\right], \quad x = h/c_0 + 1
+
+    >>> round(softened_stiffness(0.0, 1e-3, 1e5) / 1e8, 6)  # (e - 1 + e)/(e - 1) * p0/c0
+    2.581977
+    """
+    x = h / c0 + 1.0
+    return p0 / (c0 * (math.e - 1.0)) * (math.expm1(x) + x * math.exp(x)) if x > 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def damping_coefficient(clearance, mu0, c0, eta):
+    r"""Clearance-dependent viscous damping coefficient of Abaqus/Standard [Pa·s/m].
+
+    .. math:: \mu(c) = \begin{cases} \mu_0 & c \le \eta c_0 \\
+        \mu_0 \dfrac{c_0 - c}{(1 - \eta) c_0} & \eta c_0 < c < c_0 \\ 0 & c \ge c_0 \end{cases}
+
+    ``clearance`` c = −h [m] (c <= 0: closed), ``mu0`` [Pa·s/m] (N·s/m for node-based surfaces), ``c0`` [m] the
+    clearance at which damping vanishes (0: damping only while closed), ``eta`` [-] in [0, 1): the fraction of c0
+    with the full μ0 (0: linear from c = 0 to c0). The damping pressure is μ(c)·v_rel. Abaqus Analysis User's
+    Guide 37.1.3, "Contact damping" (*CONTACT DAMPING, data mu0, c0, eta).
+
+    >>> [damping_coefficient(c, 10.0, 1e-3, 0.2) for c in (0.0, 2e-4, 6e-4, 1e-3)]
+    [10.0, 10.0, 5.0, 0.0]
+    """
+    if clearance <= eta * c0:
+        return mu0
+    if clearance >= c0:
+        return 0.0
+    return mu0 * (c0 - clearance) / ((1.0 - eta) * c0)
+
+
+@njit(cache=True, inline="always")
+def critical_damping_coefficient(fraction, mass, stiffness):
+    r"""Damping coefficient for a critical damping fraction (Abaqus/Explicit) [N·s/m].
+
+    .. math:: c = \xi \sqrt{4 m k_c}, \qquad f = c\, v_{rel}
+
+    ``fraction`` ξ [-] (Abaqus default 0.03), ``mass`` m [kg] (nodal), ``stiffness`` k_c [N/m] (nodal contact
+    stiffness, area times dp/dh). ξ = 1 is critical damping of m·ẍ + c·ẋ + k·x = 0. Abaqus Keywords Reference,
+    *CONTACT DAMPING, DEFINITION=CRITICAL DAMPING FRACTION.
+
+    >>> critical_damping_coefficient(0.03, 1.0, 1e6)
+    60.0
+    """
+    return fraction * math.sqrt(4.0 * mass * stiffness)
+
+
+@njit(cache=True, inline="always")
+def seat_node(g, v_rel, area, law):
+    r"""(pressure [Pa], closed, within the damping clearance) of one seat node with gap ``g`` [m] (overclosure
+    −g), approach speed ``v_rel`` [m/s] and tributary area ``area`` [m²]; ``law`` the seat's parameters
+    (:data:`SEAT_PARAMETERS`). Hard contact gives its damping only (its elastic part is the reaction).
+
+    .. math:: p = p_e(-g) + \mu\,v_{rel}
+
+    Closed: g <= TOUCH·size (hard), g <= 0 (linear), g < c0 (softened). μ: critical fraction
+    ξ·√(4·m_i·k_i)/A_i with m_i = m·A_i/A_seat, k_i = A_i·dp/dh while closed; explicit μ0 while closed with
+    clearance <= 0; standard :func:`damping_coefficient` of the clearance (a closed node's clearance is >= 0).
+
+    >>> law = np.array([1.0, 1e9, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
+    >>> seat_node(-1e-4, 0.5, 1.0, law)
+    (100000.0, True, False)
+    """
+    kind, damping = int(law[0]), int(law[3])
+    if kind == HARD:
+        closed, p = g <= TOUCH * law[10], 0.0
+    elif kind == LINEAR:
+        closed, p = g <= 0.0, penalty_pressure(-g, law[1])
+    else:
+        closed, p = g < law[1], softened_pressure(-g, law[1], law[2]) if math.isfinite(g) else 0.0
+    within = False
+    if damping == CRITICAL:
+        if closed:
+            k = penalty_stiffness(-g, law[1]) if kind == LINEAR else softened_stiffness(-g, law[1], law[2])
+            mu = critical_damping_coefficient(law[7], law[8] * area / law[9], area * k) / area
+            p += mu * v_rel
+    elif damping != NO_DAMPING:
+        c = max(g, 0.0) if closed else g
+        if damping == EXPLICIT:
+            mu = law[4] if closed and c <= 0.0 else 0.0
+        else:
+            mu = damping_coefficient(c, law[4], law[5], law[6])
+            within = not closed and c < law[5]
+        p += mu * v_rel
+    return p, closed, within
+
+
+@njit(cache=True)
+def seat_force(s, v, nodes, law):
+    """Force of the seat on the body along its axis [N]: Σ σ_i·A_i·p_i over the reachable nodes at displacement
+    ``s`` [m] and speed ``v`` [m/s] (:func:`seat_node`; hard contact: its damping only).
+
+    Summed with Neumaier's compensation: at rest on a stiff seat the force balances the others to round-off.
+
+    >>> nodes = np.array([[0.0, -1.0, 0.5, 1.0], [0.0, -1.0, 0.5, 1.0]])  # two nodes touching, σ = −1
+    >>> law = np.array([1.0, 1e9, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
+    >>> seat_force(1e-4, 0.0, nodes, law)  # moved 0.1 mm into a 1e9 Pa/m seat: 1e5 Pa on 1 m², along −axis
+    -100000.0
+    """
+    force, lost = 0.0, 0.0  # Neumaier's compensated sum: the force at rest on a stiff seat is a small difference
+    for i in range(nodes.shape[0]):
+        if nodes[i, 3] != 0.0:
+            sigma = nodes[i, 1]
+            p, _, _ = seat_node(nodes[i, 0] + sigma * s, -sigma * v, nodes[i, 2], law)
+            term = sigma * nodes[i, 2] * p
+            total = force + term
+            lost += (force - total) + term if abs(force) >= abs(term) else (term - total) + force
+            force = total
+    return force + lost
+
+
+@njit(cache=True)
+def held_side(s, nodes, law):
+    """Side σ of the first closed reachable node at displacement ``s`` [m] (0 if none): hard contact pushes the
+    body along σ·axis.
+
+    >>> held_side(0.0, np.array([[0.0, -1.0, 1.0, 1.0]]), np.zeros(11))
+    -1.0
+    """
+    for i in range(nodes.shape[0]):
+        if nodes[i, 3] != 0.0 and seat_node(nodes[i, 0] + nodes[i, 1] * s, 0.0, nodes[i, 2], law)[1]:
+            return nodes[i, 1]
+    return 0.0
+
+
+@njit(cache=True)
+def seat_nodal(s, v, reaction, nodes, law):
+    """(CPRESS per node [Pa], status per node: 0 open, 1 closed, 2 VD) at (s [m], v [m/s]); ``reaction`` [N] is a
+    held hard contact's force, shared by the closed nodes in proportion to their areas. Unreachable nodes and open
+    nodes outside the damping clearance carry 0.
+
+    >>> p, status = seat_nodal(0.0, 0.0, 2.0, np.array([[0.0, -1.0, 0.5, 1.0], [1.0, -1.0, 0.5, 1.0]]), np.zeros(11))
+    >>> p.tolist(), status.tolist()
+    ([4.0, 0.0], [1, 0])
+    """
+    n = nodes.shape[0]
+    p, status = np.zeros(n), np.zeros(n, np.uint8)
+    closed_area = 0.0
+    for i in range(n):
+        if nodes[i, 3] != 0.0:
+            sigma = nodes[i, 1]
+            pi, closed, within = seat_node(nodes[i, 0] + sigma * s, -sigma * v, nodes[i, 2], law)
+            if closed:
+                p[i], status[i] = pi, 1
+                closed_area += nodes[i, 2]
+            elif within:
+                p[i], status[i] = pi, 2
+    if int(law[0]) == HARD and closed_area > 0.0:
+        share = reaction / closed_area
+        for i in range(n):
+            if status[i] == 1:
+                p[i] += share
+    return p, status
