@@ -36,7 +36,9 @@ class GeometricAreas:
         """Turning points of the dynamic body (v = 0) end a segment: between them s is monotone, so each
         crossing switch s − s_k can change sign only once."""
         k, scale = self.body_offset + 1, max(abs(self.body.motion.initial_velocity), 1e-3)
-        return [_labelled(lambda t, y: y[k] / scale, f"{self.body.name}:turn")]
+        lifting = self.lifting  # freed at rest on its seat: it can only return (SeatModes)
+        g = lambda t, y: y[k] / scale  # noqa: E731
+        return [_directed(g, f"{self.body.name}:turn", -lifting) if lifting else _labelled(g, f"{self.body.name}:turn")]
 
     def _area_events(self) -> list:
         """Switches s − s_k on the crossings next to the dynamic body's displacement, per blocked exchange."""
@@ -57,9 +59,8 @@ class GeometricAreas:
     def lowered_geometry(self):
         """The geometry as arrays for the compiled path (:func:`exchange.compiled.lower`): per blocked exchange its
         area steps (crossing times, area after each) and scale table, per wrapped cavity its volume spline of
-        time; or why it cannot be lowered (a dynamic body, a moving surface, a pop vent on a blocked area)."""
-        if self.contact is not None:
-            return "a dynamic body in contact with a seat"
+        time (of the dynamic body's displacement for the cavity it intrudes into), the dynamic body and its seat
+        contact; or why it cannot be lowered (a moving surface, a pop vent on a blocked area)."""
         areas, volumes = {}, {}
         for j, ga in enumerate(self.areas):
             if ga is None:
@@ -76,7 +77,7 @@ class GeometricAreas:
             vol = cav.volume
             if hasattr(vol, "spline"):
                 volumes[cav.name] = (vol.spline.x, vol.spline.c, self.body is not None and i == self.pushed)
-        return {"areas": areas, "volumes": volumes, "body": self._lowered_body()}
+        return {"areas": areas, "volumes": volumes, "body": self._lowered_body(), "contact": self.lowered_contact()}
 
     def _lowered_body(self):
         """The dynamic body's parameters for :func:`exchange.compiled_rhs.body_rhs`, or None."""
@@ -88,12 +89,12 @@ class GeometricAreas:
                 -1 if f.cavity is None else f.cavity, f.area, f.stiffness, f.preload,
                 max(abs(m.initial_velocity), 1e-3), REDERIVE_SLACK * span)
 
-    def wrap_mode(self, mode, intervals=None):
+    def wrap_mode(self, mode, intervals=None, held=False):
         """A plain network's snapshot (from the compiled path) as this network's."""
         if intervals is None:
-            return mode, tuple(self.intervals), False
+            return mode, tuple(self.intervals), held
         by_s = [ga is not None and not ga.by_time for ga in self.areas] if self.areas else [False] * len(intervals)
-        return mode, tuple(int(i) if s else None for i, s in zip(intervals, by_s)), False
+        return mode, tuple(int(i) if s else None for i, s in zip(intervals, by_s)), held
 
 
 def _directed(g, label, direction):

@@ -71,11 +71,12 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
     contact: object = None  # cases.seat_contact.SeatContact or None
     intervals: list = field(init=False, default_factory=list)
     held: bool = field(init=False, default=False)
+    lifting: float = field(init=False, default=0.0)  # SeatModes.lifting_side at the segment's start
     contact_log: list = field(init=False, default_factory=list)  # (t, kind, approach speed, pressure)
 
     def reset(self) -> None:
         super().reset()
-        self.held, self.contact_log = False, []
+        self.held, self.contact_log, self.lifting = False, [], 0.0
         self.intervals = [None] * len(self.exchanges)
         if self.body is not None:
             self.body_state.s, self.body_state.v = 0.0, self.body.motion.initial_velocity

@@ -14,6 +14,22 @@ class SeatModes:
     """Needs ``body``, ``contact``, ``held``, ``contact_log``, ``forces``, ``body_offset``, ``applied_force``,
     ``states``, ``input_time``."""
 
+    def begin_segment(self, t0, t1, y0=None):
+        super().begin_segment(t0, t1, y0)
+        self.lifting = self.lifting_side(y0) if y0 is not None else 0.0
+
+    def lifting_side(self, y) -> float:
+        """σ when the free body rests on its hard seat (v = 0 exactly, a closed node), else 0.
+
+        Freed at rest (a lift-off, or an impact whose reaction is not compressive), the body can leave the seat
+        along σ only; its acceleration there is zero to round-off, so a probe of the turning-point switch v = 0
+        would take its direction from a rounding error. The switch is watched for the return instead (−σ).
+        """
+        c, k = self.contact, self.body_offset
+        if c is None or not c.hard or self.held or y[k + 1] != 0.0:
+            return 0.0
+        return c.held_sigma(y[k])
+
     def rest_position(self, y) -> float:
         """Displacement s [m] at which a body at rest on a penalty or softened seat is in static equilibrium.
 
@@ -88,6 +104,32 @@ class SeatModes:
         self.held = self.reaction(t, y) > 0.0
         self.contact_log.append((t, "impact", float(approach), self._pressure(t, y)))
         return y
+
+    def lowered_contact(self):
+        """The seat contact as arrays for the compiled path (:mod:`exchange.compiled_seat`): (1, held, force
+        scale, law vector), the node table and the kink displacements; None without contact."""
+        c = self.contact
+        if c is None:
+            return None
+        head = np.concatenate([[1.0, float(self.held), self.force_scale()], c.law_vector])
+        return head, c.table, np.asarray(c.thresholds(), dtype=float)
+
+    def log_contact_events(self, events) -> None:
+        """The contact log of a compiled run, from its events: (t, label, state before, state after, mode
+        before) each, as :meth:`_seat_event` and :meth:`_log_touch` log them on the Python path."""
+        k, c = self.body_offset, self.contact
+        for t, label, before, after, mode in events:
+            kind = label.rpartition(":")[2]
+            if kind == "seat" and mode[2]:
+                self.contact_log.append((t, "lift-off", 0.0, self._pressure(t, before)))
+            elif kind == "seat":
+                reach = np.flatnonzero(c.reach)
+                i = reach[int(np.argmin(c.gaps(before[k])[reach]))]
+                approach = -c.sigma[i] * before[k + 1]
+                if approach > 0.0:
+                    self.contact_log.append((t, "impact", float(approach), self._pressure(t, after)))
+            elif kind.startswith("kink-"):
+                self._log_touch(t, before)
 
     def _pressure(self, t, y) -> float:
         f = self.forces.cavity

@@ -65,6 +65,7 @@ class CompiledNetwork:
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
         eq, op, hold = model[20], model[21], model[22]
         model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
+        model[25][1] = float(bool(getattr(net, "held", False)))
         for j, ex in enumerate(net.exchanges):
             eq[j] = net.equalised[j]
             op[j] = 0 if self.model[12][j, 6] == 1 and not net.popped[j] else 1
@@ -78,6 +79,8 @@ class CompiledNetwork:
                     atol, float(max_step), int(max_steps), float(near), float(deadline))
         segs = out[4]
         self._run_modes = [self._mode(row) for row in segs.tolist()]
+        if getattr(net, "contact", None) is not None:
+            net.log_contact_events(self._event_states(out))
         table = segs[:, :5].copy()
         table[:, 4] = np.arange(len(segs))
         return out[:4] + (table,) + out[5:]
@@ -114,12 +117,13 @@ class CompiledNetwork:
         popped = tuple(bool(p) for p in row[5:5 + ne])
         holding = tuple(None if math.isnan(h) else h for h in row[5 + ne:5 + 2 * ne])
         intervals = tuple(int(i) for i in row[5 + 2 * ne:5 + 3 * ne])
-        key = (code, popped, holding, intervals, row[2])
+        held = bool(row[5 + 3 * ne])
+        key = (code, popped, holding, intervals, row[2], held)
         if key not in self._modes:
             areas = self._areas_at_activation(popped, row[2])
             mode = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
             wrap = getattr(self.network, "wrap_mode", None)
-            self._modes[key] = wrap(mode, intervals) if wrap is not None else mode
+            self._modes[key] = wrap(mode, intervals, held) if wrap is not None else mode
         return self._modes[key]
 
     def _areas_at_activation(self, popped, t_min) -> tuple:
@@ -136,6 +140,26 @@ class CompiledNetwork:
             else:
                 out.append(None)
         return tuple(out)
+
+    def _event_states(self, out) -> list:
+        """(t, label, state just before, state just after, mode before) of every event of a :meth:`run`'s output.
+
+        The segment ending at an event is the last one ending at its time before one starting there (the piece
+        holding the event may be followed by the tail integrated to it); the state before is the dense output at
+        its end, the state after is the next segment's first step record (or the final state)."""
+        from cavity.rk_compiled import RECORD, DenseSteps
+
+        recs, segs, evs, y_end = out[3], out[4], out[5], out[2]
+        n, pre, found = y_end.size, 0, []
+        for te, q, _ in evs.tolist():
+            while not (segs[pre, 3] == te and (pre + 1 == len(segs) or segs[pre + 1, 2] == te)):
+                pre += 1
+            first, end, t_min = int(segs[pre, 0]), int(segs[pre, 1]), segs[pre, 2]
+            before = DenseSteps(recs[first:end], t_min, te)(te)
+            after = recs[int(segs[pre + 1, 0]), RECORD:RECORD + n] if pre + 1 < len(segs) else y_end
+            found.append((te, self.labels[int(q)], before, np.array(after), self._run_modes[pre]))
+            pre += 1
+        return found
 
     def segment_mode(self, code) -> tuple:
         """The network's snapshot during segment ``code`` of the latest :meth:`run`."""
@@ -293,8 +317,9 @@ def _exchanges(net, tables):
 def _switches(net):
     """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 11/12 a law's kink,
     4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area
-    interval, 10 its turning point), their exchanges (a kink: j + ne·(row + 1)) and labels, in the order of
-    :meth:`Network.events` (each watched only in its discrete state)."""
+    interval, 10 its turning point, 13 its seat, 14 a kink of the seat's force), their exchanges (a law's kink:
+    j + ne·(row + 1); the seat's kink: its index) and labels, in the order of :meth:`Network.events` (each watched
+    only in its discrete state)."""
     kinds, js, labels = [], [], []
 
     def add(kind, j, what):
@@ -332,6 +357,16 @@ def _switches(net):
             if area[3]:
                 add(9, j, "contact-down")
                 add(8, j, "contact-up")
+    seat = geometry.get("contact")
+    if seat is not None:  # the seat switch of hard contact, then the kinks of the seat's force
+        name = net.contact.name
+        hard = int(seat[0][3]) == 0
+        extra = [(13, 0, f"{name}:seat")] if hard else []
+        extra += [(14, i, f"{name}:kink-{i}") for i in range(len(seat[2]))]
+        for kind, j, label in extra:
+            kinds.append(kind)
+            js.append(j)
+            labels.append(label)
     return np.array(kinds, dtype=np.int64), np.array(js, dtype=np.int64), labels
 
 
@@ -341,6 +376,14 @@ def _body(net) -> np.ndarray:
     none."""
     body = _geometry(net).get("body")
     return np.array(body if body is not None else (-1.0,) + (0.0,) * 9, dtype=float)
+
+
+def _contact(net) -> tuple:
+    """``M[25]``, ``M[26]``, ``M[27]`` of the dynamic body's seat contact (:mod:`exchange.compiled_seat`)."""
+    from .compiled_seat import no_contact
+
+    seat = _geometry(net).get("contact")
+    return tuple(np.ascontiguousarray(a, dtype=float) for a in (seat if seat is not None else no_contact()))
 
 
 _CACHE_CHECKED = []
@@ -372,6 +415,7 @@ def lower(net) -> CompiledNetwork | None:
              np.asarray(gas.molar_masses, dtype=float), tx, ty, ti, ci, cf, ii, ifl, irows, ei, ef, amb,
              int(net.ledger_offset), T0.copy(), np.zeros((nc, 9 + ns)), np.zeros(ns), np.zeros(7),
              np.zeros(len(net.exchanges), dtype=np.int64), np.ones(len(net.exchanges), dtype=np.int64),
-             np.full(len(net.exchanges), np.nan), np.zeros(len(net.exchanges), dtype=np.int64), _body(net))
+             np.full(len(net.exchanges), np.nan), np.zeros(len(net.exchanges), dtype=np.int64), _body(net)) \
+        + _contact(net)
     kinds, js, labels = _switches(net)
     return CompiledNetwork(model, kinds, js, labels, T0, net)

@@ -8,7 +8,8 @@ has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`
 ``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`); a pop sets the vent's area at activation ``ef[j, 9]``. Switch
 kinds: 0 choke, 1 one-way reversal, 2 equalise, 3 release, 4 pop, 5 pop-drop, 6 pop-hold, 7 orifice join, 8/9 the
 dynamic body reaching the crossing above/below its area interval ``M[23][j]``, 10 its turning point, 11/12 a
-row of a law's Cd table of pressure / leakage table (:mod:`exchange.law_kinks`).
+row of a law's Cd table of pressure / leakage table (:mod:`exchange.law_kinks`), 13 the body's seat (hard
+contact: lift-off and impact), 14 a kink of its seat's force (:mod:`exchange.compiled_body`).
 """
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ import numpy as np
 from numba import njit
 
 from .compiled_rhs import base_area
+from .compiled_seat import seat_event, seat_switch, seat_watched
 
 __all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_intervals"]
 
@@ -27,14 +29,14 @@ def watched(M, kind, j):
     """Switch (kind, exchange j) is one of :meth:`Network.events` in the current discrete state: equalise while
     open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped."""
     eq, op, hold = M[20], M[21], M[22]
-    if kind >= 11:  # a law's kinks (exchange.law_kinks): always watched
+    if kind == 11 or kind == 12:  # a law's kinks (exchange.law_kinks): always watched
         return True
     if kind == 8:  # a crossing above the body's area interval exists
         return M[23][j] < M[6][M[12][j, 8], 1] - 1
     if kind == 9:
         return M[23][j] > 0
-    if kind == 10:
-        return True
+    if kind >= 10:  # the body's turning point, seat and kinks
+        return seat_watched(M, kind)
     if kind == 2 or kind == 3:
         return eq[j] == (1 if kind == 3 else 0)
     if kind == 7:
@@ -45,10 +47,13 @@ def watched(M, kind, j):
 
 
 @njit(cache=True)
-def on_event(M, kind, j, t):
+def on_event(M, kind, j, t, y, seg_end):
     """:meth:`Network.on_event`: equalise holds the exchange closed, release opens it; a pop crossing starts the
-    hold (or pops at once without a hold time), a drop re-arms, the hold's end pops."""
-    if kind == 8 or kind == 9:  # the body's displacement passed the crossing: the next area interval
+    hold (or pops at once without a hold time), a drop re-arms, the hold's end pops; a seat switch may change the
+    body's state ``y`` in place (:func:`exchange.compiled_seat.seat_event`)."""
+    if kind >= 13:
+        seat_event(M, kind, t, y, seg_end)
+    elif kind == 8 or kind == 9:  # the body's displacement passed the crossing: the next area interval
         M[23][j] += 1 if kind == 8 else -1
     elif kind == 10:
         pass  # a turning point only ends the segment
@@ -67,7 +72,7 @@ def on_event(M, kind, j, t):
 def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
     """Row nseg of the segment table: first record, end record, t_min, t_max, mode code (bits: equalised), then
     per exchange popped (pop vents only), then per exchange the hold start [s] (NaN: none), then per exchange the
-    dynamic body's area interval."""
+    dynamic body's area interval, then 1 while the body is held on its seat."""
     ei, op, hold = M[12], M[21], M[22]
     ne = op.size
     segs[nseg, 0], segs[nseg, 1], segs[nseg, 2], segs[nseg, 3], segs[nseg, 4] = first, end, t_min, t_max, mode
@@ -75,12 +80,15 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
         segs[nseg, 5 + j] = 1.0 if ei[j, 6] == 1 and op[j] == 1 else 0.0
         segs[nseg, 5 + ne + j] = hold[j]
         segs[nseg, 5 + 2 * ne + j] = M[23][j]
+    segs[nseg, 5 + 3 * ne] = M[25][1]
 
 
 @njit(cache=True)
 def body_switch(M, kind, j, y):
     """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
     of exchange j, and v/v_scale (10) (:meth:`cases.scene_areas.GeometricAreas._area_events`)."""
+    if kind >= 13:
+        return seat_switch(M, kind, j, y)
     bd = M[24]
     k = int(bd[0])
     if kind == 10:

@@ -24,6 +24,7 @@ from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_F
 from .compiled_modes import body_switch, on_event, record_segment, rederive_intervals, watched
 from .compiled_rhs import body_rhs, network_rhs, states, switch_value
 from .compiled_sources import kink_value
+from .compiled_seat import contact_force, is_held, lifting_side
 
 OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED, WALL_BUDGET = 0, 1, 2, 3, 4, 5, 6
 WALL_CHECK_EVERY = 1024  # steps between two looks at the clock (an object-mode call of ~1 µs)
@@ -38,8 +39,8 @@ def rhs(M, t, y, out, seg_end):
     rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
     ok = network_rhs(t, y, out, seg_end, rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef,
                      amb, ledger, T_guess, st, n, row, eq, M[21], M[23])
-    if M[24][0] >= 0.0:
-        body_rhs(y, out, ci, tx, ty, ti, st, amb, M[24])
+    if M[24][0] >= 0.0 and not is_held(M):
+        body_rhs(y, out, ci, tx, ty, ti, st, amb, M[24], contact_force(M, y))
     return ok
 
 
@@ -52,9 +53,9 @@ def switches(M, kinds, js, t, y, seg_end, vals):
     states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t_in, y, T_guess, st, n, row)
     for q in range(kinds.size):
         j = js[q]
-        if kinds[q] >= 11:
+        if kinds[q] == 11 or kinds[q] == 12:
             vals[q] = kink_value(kinds[q], j, ei, tx, ti, st, amb)
-        elif kinds[q] >= 8:
+        elif kinds[q] >= 8:  # the dynamic body and its seat
             vals[q] = body_switch(M, kinds[q], j, y)
         elif kinds[q] == 6:  # 1 (never watched) when not holding
             h = ef[j, 5]
@@ -294,6 +295,8 @@ def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
             continue  # the switch of another discrete state
         if kinds[q] == 8 or kinds[q] == 9:  # the body leaves its interval through that end only
             d = 1.0 if kinds[q] == 8 else -1.0
+        elif kinds[q] == 10 and lifting_side(M, y) != 0.0:  # freed at rest on its seat: it can only return
+            d = -lifting_side(M, y)
         elif q == last_q and t == last_t:
             d = -last_dir
         elif abs(vals[q]) > near:
@@ -338,13 +341,13 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near, de
     """Integrate from t0 through every stop (the last is the end), stopping with WALL_BUDGET once
     ``time.perf_counter()`` passes ``deadline`` (looked at every WALL_CHECK_EVERY steps).
 
-    Returns (status, t, y, step records, segments (k, 5 + 2 ne): first record, end record, t_min, t_max, mode
-    code, popped and hold start per exchange (:func:`record_segment`), events (m, 3): time, switch index,
+    Returns (status, t, y, step records, segments (k, 6 + 3 ne): first record, end record, t_min, t_max, mode
+    code, popped, hold start and area interval per exchange, held on the seat (:func:`record_segment`), events (m, 3): time, switch index,
     direction, stats [rhs calls, steps, restarts, events]).
     """
     n = y0.size
     buf, cnt = np.empty((64, RECORD + 8 * n)), np.zeros(1, np.int64)
-    segs, evs = np.empty((16, 5 + 3 * M[21].size)), np.empty((16, 3))
+    segs, evs = np.empty((16, 6 + 3 * M[21].size)), np.empty((16, 3))
     nseg, nev = 0, 0
     stats = np.zeros(4, np.int64)
     t, y = t0, y0.copy()
@@ -377,7 +380,7 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near, de
                     record_segment(M, segs, nseg, first, cnt[0], t_k, t_end, mode)
                     nseg += 1
                 q = wq[qw]
-                on_event(M, kinds[q], js[q], t_end)
+                on_event(M, kinds[q], js[q], t_end, y_end, stop)
                 evs = _grow(evs, nev + 1)
                 evs[nev, 0], evs[nev, 1], evs[nev, 2] = t_end, q, wd[qw]
                 nev += 1
