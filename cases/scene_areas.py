@@ -80,7 +80,7 @@ class GeometricAreas:
         return {"areas": areas, "volumes": volumes, "body": self._lowered_body(), "contact": self.lowered_contact()}
 
     def _lowered_body(self):
-        """The dynamic body's parameters for :func:`exchange.compiled_rhs.body_rhs`, or None."""
+        """The dynamic body's parameters for :func:`exchange.compiled_body.body_rhs`, or None."""
         if self.body is None:
             return None
         m, f = self.body.motion, self.forces

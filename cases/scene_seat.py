@@ -106,7 +106,7 @@ class SeatModes:
         return y
 
     def lowered_contact(self):
-        """The seat contact as arrays for the compiled path (:mod:`exchange.compiled_seat`): (1, held, force
+        """The seat contact as arrays for the compiled path (:mod:`exchange.compiled_body`): (1, held, force
         scale, law vector), the node table and the kink displacements; None without contact."""
         c = self.contact
         if c is None:

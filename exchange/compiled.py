@@ -95,6 +95,7 @@ class CompiledNetwork:
         model[16][:] = [s.temperature for s in net.last_states] if net.last_states else self.T_initial
         eq, op = model[20], model[21]
         model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
+        model[25][1] = float(bool(getattr(net, "held", False)))  # hard contact holds the body (compiled_body)
         for j in range(len(net.exchanges)):
             eq[j] = net.equalised[j]
             op[j] = 0 if model[12][j, 6] == 1 and not net.popped[j] else 1
@@ -371,7 +372,7 @@ def _switches(net):
 
 
 def _body(net) -> np.ndarray:
-    """The dynamic body for :func:`exchange.compiled_rhs.body_rhs`: offset, mass, gravity, pushed cavity, pressure
+    """The dynamic body for :func:`exchange.compiled_body.body_rhs`: offset, mass, gravity, pushed cavity, pressure
     cavity, pressure area, stiffness, preload, turning-point speed scale, re-derivation slack [m]; offset −1:
     none."""
     body = _geometry(net).get("body")
@@ -379,8 +380,8 @@ def _body(net) -> np.ndarray:
 
 
 def _contact(net) -> tuple:
-    """``M[25]``, ``M[26]``, ``M[27]`` of the dynamic body's seat contact (:mod:`exchange.compiled_seat`)."""
-    from .compiled_seat import no_contact
+    """``M[25]``, ``M[26]``, ``M[27]`` of the dynamic body's seat contact (:mod:`exchange.compiled_body`)."""
+    from .compiled_body import no_contact
 
     seat = _geometry(net).get("contact")
     return tuple(np.ascontiguousarray(a, dtype=float) for a in (seat if seat is not None else no_contact()))

@@ -18,8 +18,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .compiled_body import seat_event, seat_switch, seat_watched
 from .compiled_rhs import base_area
-from .compiled_seat import seat_event, seat_switch, seat_watched
 
 __all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_intervals"]
 
@@ -50,7 +50,7 @@ def watched(M, kind, j):
 def on_event(M, kind, j, t, y, seg_end):
     """:meth:`Network.on_event`: equalise holds the exchange closed, release opens it; a pop crossing starts the
     hold (or pops at once without a hold time), a drop re-arms, the hold's end pops; a seat switch may change the
-    body's state ``y`` in place (:func:`exchange.compiled_seat.seat_event`)."""
+    body's state ``y`` in place (:func:`exchange.compiled_body.seat_event`)."""
     if kind >= 13:
         seat_event(M, kind, t, y, seg_end)
     elif kind == 8 or kind == 9:  # the body's displacement passed the crossing: the next area interval

@@ -249,32 +249,6 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
     return ok
 
 
-@njit(cache=True, inline="always")
-def body_force(y, ci, tx, ty, ti, st, amb, bd):
-    """Force on the dynamic body along its axis from the gas and the spring [N] (:meth:`cases.scene_network.
-    SceneNetwork.applied_force`, same order of operations): (p − p_amb)·dV/ds of the cavity it intrudes into +
-    (p − p_amb)·A of its pressure cavity − preload − k·s. ``bd``: offset, mass, gravity, pushed cavity (−1),
-    pressure cavity (−1), pressure area, stiffness, preload (:func:`exchange.compiled.lower`)."""
-    s = y[int(bd[0])]
-    force = 0.0
-    pushed, other = int(bd[3]), int(bd[4])
-    if pushed >= 0:
-        force += (st[pushed, P] - amb[0]) * spline_value(tx, ty, ti, ci[pushed, 3], s)[1]
-    if other >= 0:
-        force += (st[other, P] - amb[0]) * bd[5]
-    return force - bd[7] - bd[6] * s
-
-
-@njit(cache=True)
-def body_rhs(y, dy, ci, tx, ty, ti, st, amb, bd, contact):
-    """ds/dt = v, dv/dt = g + F/m of the dynamic body (:meth:`cases.scene_network.SceneNetwork.rhs`):
-    F = :func:`body_force` + ``contact`` (the seat's force [N], :mod:`exchange.compiled_seat`)."""
-    k = int(bd[0])
-    force = body_force(y, ci, tx, ty, ti, st, amb, bd) + contact
-    dy[k] = y[k + 1]
-    dy[k + 1] = bd[2] + force / bd[1]
-
-
 @njit(cache=True)
 def switch_value(kind, j, ei, ef, st, amb):
     """Switch function of exchange j on the states in ``st`` (:meth:`Network._choke_switch`, kind 0,

@@ -22,9 +22,9 @@ from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_F
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
 from .compiled_modes import body_switch, on_event, record_segment, rederive_intervals, watched
-from .compiled_rhs import body_rhs, network_rhs, states, switch_value
+from .compiled_body import body_rhs, contact_force, is_held, lifting_side
+from .compiled_rhs import network_rhs, states, switch_value
 from .compiled_sources import kink_value
-from .compiled_seat import contact_force, is_held, lifting_side
 
 OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED, WALL_BUDGET = 0, 1, 2, 3, 4, 5, 6
 WALL_CHECK_EVERY = 1024  # steps between two looks at the clock (an object-mode call of ~1 µs)

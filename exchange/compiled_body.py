@@ -1,7 +1,7 @@
-"""The dynamic body's seat contact on the compiled path: its force, the hard contact's reaction, its switches
-(kind 13 the seat, kind 14 a kink of the force) and what they do.
+"""The dynamic body on the compiled path: its equation of motion, its seat contact's force, the hard contact's
+reaction, the seat's switches (kind 13 the seat, kind 14 a kink of the force) and what they do.
 
-The same algorithm as :class:`cases.scene_seat.SeatModes` and :meth:`cases.scene_network.SceneNetwork.rhs`, on
+The same algorithm as :meth:`cases.scene_network.SceneNetwork.rhs` and :class:`cases.scene_seat.SeatModes`, on
 the laws of :mod:`exchange.contact_laws` (the kernels the Python path calls). Arrays of the model tuple
 (:func:`exchange.compiled.lower`):
 
@@ -19,13 +19,40 @@ import math
 import numpy as np
 from numba import njit
 
-from .compiled_rhs import body_force, states
+from .compiled_rhs import states
+from .compiled_tables import P, spline_value
 from .contact_laws import HARD, held_side, seat_force
 
-__all__ = ["HAS", "HELD", "SCALE", "LAW", "no_contact", "is_held", "contact_force", "reaction", "seat_switch",
-           "seat_event", "seat_watched", "lifting_side"]
+__all__ = ["body_force", "body_rhs", "HAS", "HELD", "SCALE", "LAW", "no_contact", "is_held", "contact_force",
+           "reaction", "seat_switch", "seat_event", "seat_watched", "lifting_side"]
 
 HAS, HELD, SCALE, LAW = 0, 1, 2, 3  # entries of M[25]; the law vector starts at LAW
+
+
+@njit(cache=True, inline="always")
+def body_force(y, ci, tx, ty, ti, st, amb, bd):
+    """Force on the dynamic body along its axis from the gas and the spring [N] (:meth:`cases.scene_network.
+    SceneNetwork.applied_force`, same order of operations): (p − p_amb)·dV/ds of the cavity it intrudes into +
+    (p − p_amb)·A of its pressure cavity − preload − k·s. ``bd``: offset, mass, gravity, pushed cavity (−1),
+    pressure cavity (−1), pressure area, stiffness, preload (:func:`exchange.compiled.lower`)."""
+    s = y[int(bd[0])]
+    force = 0.0
+    pushed, other = int(bd[3]), int(bd[4])
+    if pushed >= 0:
+        force += (st[pushed, P] - amb[0]) * spline_value(tx, ty, ti, ci[pushed, 3], s)[1]
+    if other >= 0:
+        force += (st[other, P] - amb[0]) * bd[5]
+    return force - bd[7] - bd[6] * s
+
+
+@njit(cache=True)
+def body_rhs(y, dy, ci, tx, ty, ti, st, amb, bd, contact):
+    """ds/dt = v, dv/dt = g + F/m of the dynamic body (:meth:`cases.scene_network.SceneNetwork.rhs`):
+    F = :func:`body_force` + ``contact`` (the seat's force [N], :func:`contact_force`)."""
+    k = int(bd[0])
+    force = body_force(y, ci, tx, ty, ti, st, amb, bd) + contact
+    dy[k] = y[k + 1]
+    dy[k + 1] = bd[2] + force / bd[1]
 
 
 def no_contact():
