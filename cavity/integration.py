@@ -114,27 +114,27 @@ class Trajectory:
     deadline: float = math.inf  # time.perf_counter() after which the run stops (SolverOptions.max_wall)
     stalls: int = 0  # events in a row at the same time
     path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
-    #: compiled path: (step records, segment table) as returned by the compiled solver, read back in one call by
-    #: exchange.compiled_history
+    #: compiled path: (step records, segment table) of the compiled solver, read back by exchange.compiled_history
     compiled_records: tuple | None = field(default=None, repr=False)
 
     def __call__(self, t: float) -> np.ndarray:
         """State at time t (right limit at a breakpoint)."""
-        starts = [s.t_min for s in self.segments]
-        i = max(0, min(int(np.searchsorted(starts, t, side="right")) - 1, len(self.segments) - 1))
-        return self.segments[i](t)
+        return self.segments[int(self._index(t))](t)
 
     def mode_at(self, t: float):
         """The discrete state (``system.snapshot()``) in force at time t (right limit at a switch)."""
-        starts = [s.t_min for s in self.segments]
-        i = max(0, min(int(np.searchsorted(starts, t, side="right")) - 1, len(self.segments) - 1))
-        return self.modes[i]
+        return self.modes[int(self._index(t))]
+
+    def _index(self, t):
+        """The segment holding t (a time or an array); the segments' starts are kept while none is added."""
+        if len(self.__dict__.get("_starts", ())) != len(self.segments):
+            self._starts = np.array([s.t_min for s in self.segments])
+        return np.clip(np.searchsorted(self._starts, t, side="right") - 1, 0, len(self.segments) - 1)
 
     def sample(self, times) -> np.ndarray:
         """States at ``times`` (sorted), shape (len(times), n)."""
         times = np.asarray(times, dtype=float)
-        starts = np.array([s.t_min for s in self.segments])
-        idx = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(self.segments) - 1)
+        idx = self._index(times)
         out = np.empty((times.size, self.segments[0](self.segments[0].t_min).size))
         for i in np.unique(idx):
             sel = idx == i
