@@ -26,6 +26,7 @@ from cavity.inflator import MassTemperatureInflator, TankTestInflator
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 
 from . import laws
+from .compiled_contact import event_states, seat_arrays
 from .discharge import DischargeTable
 from .law_kinks import dp_kinks, pressure_kinks
 from .lowered_columns import area_at_activation, law_parameters, law_tables, liquid as liquid_columns
@@ -80,7 +81,7 @@ class CompiledNetwork:
         segs = out[4]
         self._run_modes = [self._mode(row) for row in segs.tolist()]
         if getattr(net, "contact", None) is not None:
-            net.log_contact_events(self._event_states(out))
+            net.log_contact_events(event_states(out, self.labels, self._run_modes))
         table = segs[:, :5].copy()
         table[:, 4] = np.arange(len(segs))
         return out[:4] + (table,) + out[5:]
@@ -141,26 +142,6 @@ class CompiledNetwork:
             else:
                 out.append(None)
         return tuple(out)
-
-    def _event_states(self, out) -> list:
-        """(t, label, state just before, state just after, mode before) of every event of a :meth:`run`'s output.
-
-        The segment ending at an event is the last one ending at its time before one starting there (the piece
-        holding the event may be followed by the tail integrated to it); the state before is the dense output at
-        its end, the state after is the next segment's first step record (or the final state)."""
-        from cavity.rk_compiled import RECORD, DenseSteps
-
-        recs, segs, evs, y_end = out[3], out[4], out[5], out[2]
-        n, pre, found = y_end.size, 0, []
-        for te, q, _ in evs.tolist():
-            while not (segs[pre, 3] == te and (pre + 1 == len(segs) or segs[pre + 1, 2] == te)):
-                pre += 1
-            first, end, t_min = int(segs[pre, 0]), int(segs[pre, 1]), segs[pre, 2]
-            before = DenseSteps(recs[first:end], t_min, te)(te)
-            after = recs[int(segs[pre + 1, 0]), RECORD:RECORD + n] if pre + 1 < len(segs) else y_end
-            found.append((te, self.labels[int(q)], before, np.array(after), self._run_modes[pre]))
-            pre += 1
-        return found
 
     def segment_mode(self, code) -> tuple:
         """The network's snapshot during segment ``code`` of the latest :meth:`run`."""
@@ -379,14 +360,6 @@ def _body(net) -> np.ndarray:
     return np.array(body if body is not None else (-1.0,) + (0.0,) * 9, dtype=float)
 
 
-def _contact(net) -> tuple:
-    """``M[25]``, ``M[26]``, ``M[27]`` of the dynamic body's seat contact (:mod:`exchange.compiled_body`)."""
-    from .compiled_body import no_contact
-
-    seat = _geometry(net).get("contact")
-    return tuple(np.ascontiguousarray(a, dtype=float) for a in (seat if seat is not None else no_contact()))
-
-
 _CACHE_CHECKED = []
 
 
@@ -417,6 +390,6 @@ def lower(net) -> CompiledNetwork | None:
              int(net.ledger_offset), T0.copy(), np.zeros((nc, 9 + ns)), np.zeros(ns), np.zeros(7),
              np.zeros(len(net.exchanges), dtype=np.int64), np.ones(len(net.exchanges), dtype=np.int64),
              np.full(len(net.exchanges), np.nan), np.zeros(len(net.exchanges), dtype=np.int64), _body(net)) \
-        + _contact(net)
+        + seat_arrays(_geometry(net).get("contact"))
     kinds, js, labels = _switches(net)
     return CompiledNetwork(model, kinds, js, labels, T0, net)

@@ -23,7 +23,7 @@ from .compiled_rhs import states
 from .compiled_tables import P, spline_value
 from .contact_laws import HARD, held_side, seat_force
 
-__all__ = ["body_force", "body_rhs", "HAS", "HELD", "SCALE", "LAW", "no_contact", "is_held", "contact_force",
+__all__ = ["body_force", "body_rhs", "HAS", "HELD", "SCALE", "LAW", "is_held", "contact_force",
            "reaction", "seat_switch", "seat_event", "seat_watched", "lifting_side"]
 
 HAS, HELD, SCALE, LAW = 0, 1, 2, 3  # entries of M[25]; the law vector starts at LAW
@@ -53,11 +53,6 @@ def body_rhs(y, dy, ci, tx, ty, ti, st, amb, bd, contact):
     force = body_force(y, ci, tx, ty, ti, st, amb, bd) + contact
     dy[k] = y[k + 1]
     dy[k + 1] = bd[2] + force / bd[1]
-
-
-def no_contact():
-    """``M[25]``, ``M[26]``, ``M[27]`` of a network without seat contact."""
-    return np.zeros(LAW + 11), np.zeros((0, 4)), np.zeros(0)
 
 
 @njit(cache=True, inline="always")
