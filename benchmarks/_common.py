@@ -31,9 +31,9 @@ ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:  # tests.closed_forms holds the references
     sys.path.insert(0, str(ROOT))
 
-from cases.build import build_model
-from cases.runner import compiled_readback, history_rows, peak_pressure
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.runner import compiled_readback, history_rows, peak_pressure
+from cases.scene.files import load_scene
 from cavity.integration import SolverError, integrate
 
 
@@ -134,7 +134,7 @@ def machine() -> str:
 def options_for(model, method: str, rtol: float):
     """The model's solver options with another method and rtol; atol = rtol/100 × each unknown's scale.
 
-    Mirrors ``cases.build`` (docs/scenes.md: absolute tolerances are atol, default rtol/100, times each unknown's
+    Mirrors ``cases.model.build`` (docs/scenes.md: absolute tolerances are atol, default rtol/100, times each unknown's
     scale); the scales are recovered from the options the scene was built with.
     """
     s = model.scene.solver

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cases.build import build_model
-from cases.library import CASES, HERE
-from cases.scene import load_scene, scene_from_dict
+from cases.model.build import build_model
+from cases.run.library import CASES, HERE
+from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import integrate
 from tests.test_compiled_laws import law_model, oil_model, tank_test_model
 from tests.test_exchange_scenes import fill_with_pop

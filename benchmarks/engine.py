@@ -1,7 +1,7 @@
 """One engine against the previous one: every library case solved on the compiled path and on the Python
 (``solve_ivp``) path at the same rtol, in the same run.
 
-Timed is ``cases.runner.run`` (the integration and the history read-back; the model is built once, outside),
+Timed is ``cases.run.runner.run`` (the integration and the history read-back; the model is built once, outside),
 best of ``--repeat`` after a warm-up that pays for numba's loading. The error column is the compiled run's largest
 relative difference from the Python run over every history column (scaled by the column's peak), so the ratio is
 at equal results. Cases that do not lower run on the Python path only ("python" in the path column, no ratio).
@@ -14,10 +14,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from cases.build import build_model
-from cases.library import CASES, HERE
-from cases.runner import run
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.library import CASES, HERE
+from cases.run.runner import run
+from cases.scene.files import load_scene
 
 
 def best(model, compiled: bool, repeat: int):

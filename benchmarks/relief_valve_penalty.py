@@ -9,9 +9,9 @@ import time
 import tomllib
 from pathlib import Path
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 
 SCENE = Path(__file__).resolve().parents[1] / "cases" / "relief_valve.toml"
 VARIANTS = [("no damping", {"damping": "none"}), ("critical fraction 0.03", {"damping": "critical_fraction"}),

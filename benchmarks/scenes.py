@@ -7,10 +7,10 @@ import argparse
 import statistics
 import time
 
-from cases.build import build_model
-from cases.library import CASES, HERE
-from cases.runner import run
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.library import CASES, HERE
+from cases.run.runner import run
+from cases.scene.files import load_scene
 
 
 def timed(name):

@@ -12,10 +12,10 @@ import time
 
 import numpy as np
 
-from cases.build import build_model
-from cases.library import CASES, HERE
-from cases.runner import run
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.library import CASES, HERE
+from cases.run.runner import run
+from cases.scene.files import load_scene
 
 SCENES = ("relief_valve", "relief_valve_undamped")
 

@@ -65,7 +65,7 @@ def ventsim(*args) -> list:
 
 def library_rows() -> list:
     """(name, CPU, wall) of the first run of each library scene in a fresh process, numba's cache as installed."""
-    from cases.library import CASES, HERE
+    from cases.run.library import CASES, HERE
 
     rows = []
     with tempfile.TemporaryDirectory() as out:

@@ -2,7 +2,7 @@
 
 Default case: the choked blowdown of a rigid tank (``cases/verification/blowdown_choked.toml``, ~0.05 s a run), with
 the vent's area (20 values) x discharge coefficient (10 values) = 200 variants, each validated, run and written
-(history.csv, summary.json, row.json) by ``cases.sweep``, rows gathered into results.csv and Parquet. For each
+(history.csv, summary.json, row.json) by ``cases.sweep.parallel``, rows gathered into results.csv and Parquet. For each
 worker count a LocalCluster of single-threaded worker processes is started and warmed up (every worker imports
 ventsim and runs the scene once, the client runs a tiny sweep); the timed region is then the whole
 ``sweep(...)`` call into a fresh folder: planning, submission, the runs, the result files (no plot). Cluster
@@ -37,7 +37,7 @@ from pathlib import Path
 
 from dask.distributed import Client, LocalCluster
 
-from cases.sweep import run_variant, sweep
+from cases.sweep.parallel import run_variant, sweep
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 #: scene -> (file, the two varied keys with their ranges): area-like x discharge coefficient, ~2 areas per Cd.
@@ -100,8 +100,8 @@ def measure(workers: int, vary: dict, out: Path) -> dict:
 
 
 def _runs(n: int, path: Path = SCENE) -> float:
-    from cases.runner import run_scene
-    from cases.scene import load_scene
+    from cases.run.runner import run_scene
+    from cases.scene.files import load_scene
 
     scene = load_scene(path)
     run_scene(scene)

@@ -35,9 +35,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from cases.build import build_model  # noqa: E402
-from cases.runner import run  # noqa: E402
-from cases.scene import load_scene  # noqa: E402
+from cases.model.build import build_model  # noqa: E402
+from cases.run.runner import run  # noqa: E402
+from cases.scene.files import load_scene  # noqa: E402
 
 HERE = ROOT / "cases" / "validation"
 #: scene, HydDown set-up, stem of the measured CSVs (None: no measurement), gas and wall probes

@@ -15,11 +15,11 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from cases.build import build_model
-from cases.library import HERE
-from cases.runner import run
-from cases.scene import load_scene
-import cases.build_leak as build_leak
+from cases.model.build import build_model
+from cases.run.library import HERE
+from cases.run.runner import run
+from cases.scene.files import load_scene
+import cases.model.build_leak as build_leak
 
 BOX = (np.array([-0.12, -0.12, 0.05]), np.array([0.12, 0.12, 0.2]))
 

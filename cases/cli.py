@@ -11,8 +11,8 @@ import sys
 import time
 from pathlib import Path
 
-from .decks.commands import add_import_parser, add_units_argument
-from .errors import SceneError
+from cases.decks.commands import add_import_parser, add_units_argument
+from cases.scene.errors import SceneError
 
 __all__ = ["main", "EXIT_OK", "EXIT_CHECK_FAILED", "EXIT_BAD_INPUT", "EXIT_INTERRUPTED"]
 
@@ -32,9 +32,9 @@ def _configure_logging(args) -> None:
 
 
 def _run(args) -> int:
-    from .decks.commands import scene_for_run
-    from .output import check_out, output_set, write_results
-    from .runner import RunError, run_scene
+    from cases.decks.commands import scene_for_run
+    from cases.results.output import check_out, output_set, write_results
+    from cases.run.runner import RunError, run_scene
 
     check_out(args.out)  # before the run, not after it
     start = time.process_time()
@@ -57,7 +57,7 @@ def _run(args) -> int:
         paths = write_results(results, stage)
         log.debug("wrote history, summary and plot in %.2f s CPU", time.process_time() - start)
         if getattr(args, "render", False):
-            from .pictures import write_pictures
+            from cases.results.pictures import write_pictures
 
             start = time.process_time()
             pics = write_pictures(results, stage, times=args.times)
@@ -94,11 +94,11 @@ def _report(results, paths) -> None:
 
 
 def _check(args) -> int:
-    from .library import CASES, check_all, format_table
+    from cases.run.library import CASES, check_all, format_table
 
     unknown = [n for n in args.cases if n not in CASES]
     if unknown:
-        from .schema import suggest
+        from cases.scene.schema import suggest
 
         raise SceneError("ventsim check", "", f"unknown case {unknown[0]!r}{suggest(unknown[0], CASES)}; "
                                                f"cases: {', '.join(CASES)}")
@@ -118,7 +118,7 @@ def _seconds(text: str) -> float:
 
 
 def parser() -> argparse.ArgumentParser:
-    from .provenance import version
+    from cases.run.provenance import version
 
     p = argparse.ArgumentParser(prog="ventsim", description="Gas cavities venting through blockable leakage surfaces.",
                                 epilog="exit codes: 0 success, 1 a checked case is off its reference, 2 bad scene or "
@@ -142,7 +142,7 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("cases", nargs="*", help="case names (default: all)")
     c.add_argument("--update", action="store_true", help="write the reference histories instead of comparing")
     c.set_defaults(func=_check)
-    from .sweep import add_sweep_parser
+    from cases.sweep.parallel import add_sweep_parser
     add_sweep_parser(sub)
     add_import_parser(sub)
     return p

@@ -13,9 +13,9 @@ SCENES = ("verification/blowdown_choked.toml", "seal_vent.toml")
 
 
 def main() -> int:
-    from .build import build_model
-    from .runner import run
-    from .scene import load_scene
+    from cases.model.build import build_model
+    from cases.run.runner import run
+    from cases.scene.files import load_scene
 
     print("ventsim: compiling the numba kernels ahead of the first run (about 1.5 min of CPU the first time)",
           file=sys.stderr, flush=True)

@@ -1,6 +1,6 @@
 """Warnings a run gives instead of clamping a value silently: an inflator temperature held at a bound, a
 species used outside its data range, a table extrapolated. They are ordinary Python warnings of category
-:class:`VentsimWarning`; ``cases.runner`` records them in ``summary.json`` ("warnings") and the ``ventsim``
+:class:`VentsimWarning`; ``cases.run.runner`` records them in ``summary.json`` ("warnings") and the ``ventsim``
 command prints them on stderr."""
 from __future__ import annotations
 

@@ -93,7 +93,7 @@ class Species:
         Where the data came from (a scene, a built-in, a CoolProp fit and its error).
     valid_range : (float, float)
         Temperatures [K] between which the data hold (a CoolProp fit's range; (0, inf): not known). A run that
-        leaves it gets a warning (``cases.species_range``).
+        leaves it gets a warning (``cases.results.species_range``).
 
     Examples
     --------

@@ -1,6 +1,6 @@
 """The history of a run on the compiled path, read back from its dense output in one numba call.
 
-:func:`cases.runner.quantities` builds a history row in Python from ``Trajectory.sample`` and ``Network.states``
+:func:`cases.run.runner.quantities` builds a history row in Python from ``Trajectory.sample`` and ``Network.states``
 (~30 µs a row, ten times the whole solve of a small scene). On the compiled path the trajectory keeps its step
 records and segment table (``Trajectory.compiled_records``), so :func:`history_rows` evaluates the dense output,
 the cavity states and the exchange flows at every output time in one call, with the kernels the right-hand side
@@ -16,7 +16,7 @@ Each step of the Python builder has its mirror here:
 - the discrete state: ``Network.restore(mode)``; of a mode the equalised flags (``mode[3]``) and the popped flags
   (``mode[0]``) act, passed per segment as ``eqs`` and ``ops`` (0 while a pop vent is shut); a DELTA LEAKAGE
   AREA's area at activation is set once per run (``ef[:, 9]``) and acts only while its exchange is open;
-- the row: the columns of :func:`cases.runner.history_columns`, time [s], then per cavity pressure [Pa],
+- the row: the columns of :func:`cases.run.runner.history_columns`, time [s], then per cavity pressure [Pa],
   temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area [m^2].
 """
 from __future__ import annotations

@@ -86,7 +86,7 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
 @njit(cache=True)
 def body_switch(M, kind, j, y):
     """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
-    of exchange j, and v/v_scale (10) (:meth:`cases.scene_areas.GeometricAreas._area_events`)."""
+    of exchange j, and v/v_scale (10) (:meth:`cases.model.scene_areas.GeometricAreas._area_events`)."""
     if kind >= 13:
         return seat_switch(M, kind, j, y)
     bd = M[24]
@@ -102,7 +102,7 @@ def body_switch(M, kind, j, y):
 @njit(cache=True)
 def rederive_intervals(M, y):
     """The area interval of each exchange re-derived from the body's displacement when it lies outside by more
-    than the slack (:meth:`cases.scene_areas.GeometricAreas._rederive_intervals`)."""
+    than the slack (:meth:`cases.model.scene_areas.GeometricAreas._rederive_intervals`)."""
     bd, ei, tx, ti, iv = M[24], M[12], M[4], M[6], M[23]
     s = y[int(bd[0])]
     for j in range(iv.size):

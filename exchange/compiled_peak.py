@@ -1,6 +1,6 @@
 """The peak pressure of each cavity of a run on the compiled path, found in one numba call.
 
-Mirror of :func:`cases.runner.peak_pressure` (the largest pressure at every step end and segment start, refined
+Mirror of :func:`cases.run.runner.peak_pressure` (the largest pressure at every step end and segment start, refined
 between its neighbours by scipy's bounded scalar search, ``minimize_scalar(method="bounded")``, ported line by
 line in :func:`bounded_minimum_of_minus_p`) on the kernels of :mod:`exchange.compiled_history`: a search of ~25–60
 pressure evaluations costs ~1 µs instead of ~0.5 ms through Python. Pressure does not depend on the discrete
@@ -113,7 +113,7 @@ def bounded_minimum_of_minus_p(M, recs, segs, c, x1, x2, xatol, y, guess, st, n,
 @njit(cache=True)
 def peak_pressures(M, recs, segs, ts):
     """(ok, (nc, 2) array of [peak pressure [Pa], its time [s]]) per cavity: the largest pressure at the
-    candidate times ``ts`` [s] (sorted), refined between its neighbours (:func:`cases.runner.refine_peak`)."""
+    candidate times ``ts`` [s] (sorted), refined between its neighbours (:func:`cases.run.runner.refine_peak`)."""
     ci, cf, st, n, row = M[7], M[8], M[17], M[18], M[19]
     nc, m = ci.shape[0], ts.size
     y, guess = np.empty((recs.shape[1] - RECORD) // 8), cf[:, 0].copy()

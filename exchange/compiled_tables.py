@@ -42,7 +42,7 @@ def table_slope(tx, ty, ti, k, x):
 @njit(cache=True, inline="always")
 def step_value(tx, ty, ti, k, x):
     """Step table k at x: ty[i] for tx[i] <= x < tx[i+1] (right limit at a step; tx[0] is -inf)
-    (:meth:`cases.area_track.AreaTrack.area_in` on a fixed surface)."""
+    (:meth:`cases.model.area_track.AreaTrack.area_in` on a fixed surface)."""
     s, n = ti[k, 0], ti[k, 1]
     i = np.searchsorted(tx[s:s + n], x, side="right") - 1
     return ty[s + max(i, 0)]
@@ -51,7 +51,7 @@ def step_value(tx, ty, ti, k, x):
 @njit(cache=True, inline="always")
 def spline_value(tx, ty, ti, k, x):
     """(value, slope) of the cubic spline k at x: knots in table k, coefficients (4 per piece, highest power
-    first, as scipy's PPoly) in table k + 1; held at its ends, slope 0 outside (:class:`cases.geometry.
+    first, as scipy's PPoly) in table k + 1; held at its ends, slope 0 outside (:class:`cases.model.wrapped_volume.
     WrappedVolume`)."""
     s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]
     inside = tx[s] <= x <= tx[s + n - 1]

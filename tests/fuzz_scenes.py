@@ -45,7 +45,7 @@ WRONG_TYPES = ("four", True, False, [1.0, 2.0], {"a": 1}, "", 29.1, "false", 0)
 
 
 def _library():
-    from cases.library import CASES, HERE
+    from cases.run.library import CASES, HERE
 
     return {name: HERE / rel for name, rel in CASES.items()}
 
@@ -466,10 +466,10 @@ def warm_up(library) -> None:
     import tempfile
 
     from cases import cli  # noqa: F401
-    from cases.output import plot_history
+    from cases.results.output import plot_history
 
-    code = ("import tomllib, sys; from pathlib import Path; from cases.scene import scene_from_dict; "
-            "from cases.build import build_model; from cases.runner import run\n"
+    code = ("import tomllib, sys; from pathlib import Path; from cases.scene.files import scene_from_dict; "
+            "from cases.model.build import build_model; from cases.run.runner import run\n"
             "for p in sys.argv[1:]:\n"
             "    d = tomllib.loads(Path(p).read_text()); d['time']['end'] *= 0.01; d['time'].pop('output_interval', None)\n"
             "    run(build_model(scene_from_dict(d, p)))\n")

@@ -9,9 +9,9 @@ import trimesh
 
 import blockage
 from blockage.reference import nearest_faces
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import load_scene, scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import load_scene, scene_from_dict
 from tests.conftest import ROOT, VERIFICATION
 from tests.scenes import tank
 
@@ -208,7 +208,7 @@ def test_a_mesh_series_gives_the_histories_of_the_equivalent_vertex_trajectory(t
 
 
 def test_permuted_nodes_and_changed_connectivity_in_a_series_are_clear_errors(tmp_path):
-    from cases.errors import SceneError
+    from cases.scene.errors import SceneError
 
     (_, series), plate, frames, times = series_scenes(tmp_path)
     faces = np.asarray(plate.faces)

@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 import trimesh
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 from tests.scenes import tank
 
 TOL, V, Z0, SLOPE = 1e-3, 0.5, 0.011, 0.04  # tolerance [m], plate speed [m/s], plate height at x=0 [m], tilt

@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_simpson
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import load_scene
 from tests.conftest import ROOT
 
 

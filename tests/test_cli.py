@@ -34,7 +34,7 @@ def test_exchange_columns(tmp_path, verification_dir):
 
 
 def test_failed_write_keeps_previous_file(tmp_path):
-    from cases.output import atomic_path
+    from cases.results.output import atomic_path
 
     target = tmp_path / "summary.json"
     target.write_text("old")

@@ -93,9 +93,9 @@ def test_a_message_before_numba_compiles(tmp_path, monkeypatch):
 
 def test_the_install_warm_up_covers_the_compiled_path_and_the_blockage_kernels():
     from cases import warmup
-    from cases.build import build_model
-    from cases.runner import run
-    from cases.scene import load_scene
+    from cases.model.build import build_model
+    from cases.run.runner import run
+    from cases.scene.files import load_scene
 
     models = [build_model(load_scene(warmup.HERE / name)) for name in warmup.SCENES]
     assert run(models[0]).trajectory.path == "compiled"

@@ -15,10 +15,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.library import CASES, HERE
-from cases.runner import cavity_summary, compiled_readback, history_columns, history_rows, run
-from cases.scene import load_scene, scene_from_dict
+from cases.model.build import build_model
+from cases.run.library import CASES, HERE
+from cases.run.runner import cavity_summary, compiled_readback, history_columns, history_rows, run
+from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import SolverError, integrate
 from exchange import orifice
 from exchange.compiled_solver import rhs as compiled_rhs

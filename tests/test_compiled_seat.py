@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import load_scene, read_scene_data, scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import load_scene, read_scene_data, scene_from_dict
 from tests.test_contact_scenes import poppet_scene
 
 CASES = Path(__file__).resolve().parents[1] / "cases"

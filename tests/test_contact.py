@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cases.contact import (
+from exchange.contact import (
     ContactDamping, Hard, LinearPenalty, Softened, contact_stiffness, cpress, critical_damping_coefficient,
     damping_coefficient, damping_pressure, default_critical_fraction, hard_contact_pressure, overclosure_pressure,
     suggest_mu0, suggest_mu0_euler_column,

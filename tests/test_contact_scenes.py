@@ -6,11 +6,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cases.contact import ContactDamping, Hard, LinearPenalty, Softened, cpress
-from cases.errors import SceneError
-from cases.runner import run_scene
-from cases.scene import read_scene_data, scene_from_dict
-from cases.seat_contact import STATUS_CODES, SeatContact
+from exchange.contact import ContactDamping, Hard, LinearPenalty, Softened, cpress
+from cases.scene.errors import SceneError
+from cases.run.runner import run_scene
+from cases.scene.files import read_scene_data, scene_from_dict
+from cases.model.seat_contact import STATUS_CODES, SeatContact
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 SEAT = "meshes/relief_seat.obj"  # annulus r = 5..6 mm, 144 nodes, 96 quads
@@ -146,7 +146,7 @@ DAMPINGS = [None, ContactDamping(1e4, c0=3e-4, eta=0.3), ContactDamping(1e4, c0=
 @pytest.mark.parametrize("law", LAWS)
 @pytest.mark.parametrize("damping", DAMPINGS)
 def test_nodal_kernels_match_the_scalar_laws(law, damping):
-    """SeatContact evaluates cases.contact.cpress on arrays: same pressure and status at every node."""
+    """SeatContact evaluates exchange.contact.cpress on arrays: same pressure and status at every node."""
     rng = np.random.default_rng(1)
     n = 200
     g0 = rng.uniform(-4e-4, 6e-4, n)
@@ -199,8 +199,8 @@ def test_bad_body_force_keys():
 
 def test_vtk_frames_of_the_seat_carry_cpress_and_status(tmp_path):
     pytest.importorskip("pyvista")
-    from cases.pictures import frames_for
-    from cases.render_vtk import leak_polydata
+    from cases.results.pictures import frames_for
+    from cases.results.render_vtk import leak_polydata
 
     data = constant_cp_relief_valve()
     data["time"]["end"] = 0.085
@@ -232,7 +232,7 @@ def test_hard_contact_stops_a_falling_body_and_then_carries_its_weight():
 def test_outputs_hold_nodal_cpress_and_the_contact_summary(tmp_path):
     import json
 
-    from cases.output import write_results
+    from cases.results.output import write_results
 
     res = run_dict(poppet_scene({"pressure_overclosure": "hard"}, preload=12.5))
     paths = write_results(res, tmp_path)

@@ -2,10 +2,10 @@
 import re
 from pathlib import Path
 
-from cases.docs import BEGIN, END, key_reference
-from cases.runner import run
-from cases.build import build_model
-from cases.scene import load_scene
+from cases.scene.docs import BEGIN, END, key_reference
+from cases.run.runner import run
+from cases.model.build import build_model
+from cases.scene.files import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_key_reference_is_current():
     text = (ROOT / "docs" / "scenes.md").read_text()
     assert text.split(BEGIN)[1].split(END)[0].strip() == key_reference().strip(), \
-        "run: python -m cases.docs --write"
+        "run: python -m cases.scene.docs --write"
 
 
 def test_documented_example_runs_and_is_the_main_scene(tmp_path):

@@ -4,10 +4,10 @@ import math
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.errors import SceneError
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.scene.errors import SceneError
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 from tests.scenes import pop_hold_reset, tank
 
 R_U = 8.314462618

@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 from cavity.gas import GasModel
 from cavity.species import Species, builtin_species, species_from_coolprop
 from cavity.tolerances import R_UNIVERSAL

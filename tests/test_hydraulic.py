@@ -2,10 +2,10 @@
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.errors import SceneError
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.scene.errors import SceneError
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 
 K, RHO, P0 = 1.5e9, 870.0, 2.0e5  # oil: bulk modulus [Pa], density [kg/m^3], initial pressure [Pa]
 

@@ -3,9 +3,9 @@ import math
 
 import numpy as np
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 from exchange.orifice import choked_flow_factor
 from tests.scenes import tank
 

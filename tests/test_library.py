@@ -1,8 +1,8 @@
-"""Regression: every case of the library reproduces its reference history (tolerance: cases.library.RTOL)."""
+"""Regression: every case of the library reproduces its reference history (tolerance: cases.run.library.RTOL)."""
 import numpy as np
 import pytest
 
-from cases.library import CASES, RTOL, check_case, column_errors, read_reference, reference_path
+from cases.run.library import CASES, RTOL, check_case, column_errors, read_reference, reference_path
 
 
 @pytest.mark.parametrize("name", list(CASES))
@@ -35,10 +35,10 @@ def test_peak_pressure_independent_of_output_interval(name):
     """Ten times finer output: peak pressures agree to 1e-8 (they are located on the dense output)."""
     from dataclasses import replace
 
-    from cases.build import build_model
-    from cases.library import HERE
-    from cases.runner import run
-    from cases.scene import load_scene
+    from cases.model.build import build_model
+    from cases.run.library import HERE
+    from cases.run.runner import run
+    from cases.scene.files import load_scene
 
     scene = load_scene(HERE / CASES[name])
     fine = replace(scene, time=replace(scene.time, output_interval=(scene.time.output_interval

@@ -5,8 +5,8 @@ import re
 import numpy as np
 import pytest
 
-from cases.errors import SceneError
-from cases.mesh_series import MeshSeries, read_mesh_series, write_npz, write_pvd, write_xdmf
+from cases.scene.errors import SceneError
+from cases.model.mesh_series import MeshSeries, read_mesh_series, write_npz, write_pvd, write_xdmf
 
 KEY = "body[0].mesh_series"
 T = np.array([0.0, 1e-3, 2.5e-3, 4e-3, 7e-3])  # [s], uneven on purpose
@@ -369,7 +369,7 @@ def test_xdmf_step_without_positions_is_an_error(tmp_path):
 
 
 def test_mesh_series_is_a_vertex_trajectory_with_read_only_arrays():
-    from cases.bodies import VertexTrajectory
+    from cases.model.bodies import VertexTrajectory
 
     x0, faces = sphere()
     s = MeshSeries(T, frames(x0), faces)

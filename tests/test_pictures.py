@@ -1,6 +1,6 @@
 """`ventsim run --render` on airbag_impactor: annotated PNGs (colour bar, title) and a GIF off screen, the blocked
 colour absent before and present after; a whole-scene view; a VTK series of every surface that meshio and pyvista
-read, whose vent area is the one definition of :mod:`cases.leak_state`."""
+read, whose vent area is the one definition of :mod:`cases.results.leak_state`."""
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from cases.leak_state import leak_state
-from cases.pictures import default_times, write_pictures, write_vtk
-from cases.render import BLOCKED_RGB, UNBLOCKED_RGB, blocked_colour_fraction, fraction_rgb
-from cases.render_annotate import COLOUR_BAR_WIDTH, view_part
-from cases.runner import run_scene
+from cases.results.leak_state import leak_state
+from cases.results.pictures import default_times, write_pictures, write_vtk
+from cases.results.render import BLOCKED_RGB, UNBLOCKED_RGB, blocked_colour_fraction, fraction_rgb
+from cases.results.render_annotate import COLOUR_BAR_WIDTH, view_part
+from cases.run.runner import run_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 

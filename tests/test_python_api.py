@@ -10,7 +10,7 @@ import trimesh
 
 import ventsim
 from cavity.tolerances import R_UNIVERSAL
-from cases.scene import read_scene_data
+from cases.scene.files import read_scene_data
 
 ROOT = Path(__file__).resolve().parents[1]
 M, V, MDOT, T_IN, P0, T0 = 0.0280134, 0.06, 0.5, 600.0, 1.0e5, 300.0

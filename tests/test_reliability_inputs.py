@@ -233,9 +233,9 @@ def test_a_directory_given_as_a_mesh(capsys, tmp_path):
 def test_scene_dataclasses_built_in_python_are_validated():
     from dataclasses import replace
 
-    from cases.build import build_model
-    from cases.errors import SceneError
-    from cases.scene import scene_from_dict
+    from cases.model.build import build_model
+    from cases.scene.errors import SceneError
+    from cases.scene.files import scene_from_dict
 
     good = scene_from_dict(tank(), "/nowhere/scene.toml")
     bad = replace(good, cavity=(replace(good.cavity[0], pressure=-1.0),))
@@ -250,7 +250,7 @@ def test_scene_dataclasses_built_in_python_are_validated():
 
 
 def test_the_sweep_uses_the_same_validation(tmp_path):
-    from cases.sweep import run_variant
+    from cases.sweep.parallel import run_variant
 
     data = tank()
     data["exchange"][0]["two_way"] = "false"

@@ -6,9 +6,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.runner import RunError, run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import RunError, run
+from cases.scene.files import scene_from_dict
 from tests.reliability import run_cli, tank, write
 
 
@@ -88,7 +88,7 @@ def test_an_interrupted_write_keeps_the_earlier_set(capsys, tmp_path, monkeypatc
     def killed(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("cases.output.plot_history", killed)  # history and summary written, the picture not
+    monkeypatch.setattr("cases.results.output.plot_history", killed)  # history and summary written, the picture not
     data = tank()
     data["cavity"][0]["pressure"] = 4e5
     assert run_cli(capsys, write(tmp_path, data), out)[0] == 130
@@ -113,7 +113,7 @@ def test_a_run_killed_between_the_two_renames_gets_its_set_back(capsys, tmp_path
     old = tmp_path / ".out.old-x"
     old.mkdir()
     out.rename(old / "set")  # the state after the first rename of a swap
-    from cases.output import _clean
+    from cases.results.output import _clean
 
     _clean(out)
     assert sorted(p.name for p in out.iterdir()) == ["history.csv", "history.png", "summary.json"]

@@ -3,10 +3,10 @@ import csv
 
 import pytest
 
-from cases.sweep import run_variant, sweep
-from cases.sweep_design import SweepError
-from cases.sweep_folder import folder_lock
-from cases.sweep_plot import ResultsTable
+from cases.sweep.parallel import run_variant, sweep
+from cases.sweep.design import SweepError
+from cases.sweep.folder import folder_lock
+from cases.sweep.plot import ResultsTable
 from tests.reliability import tank, write
 
 

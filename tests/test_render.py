@@ -1,4 +1,4 @@
-"""Off-screen pictures and VTK series of a blocked vent (cases.render, cases.render_vtk).
+"""Off-screen pictures and VTK series of a blocked vent (cases.results.render, cases.results.render_vtk).
 
 Synthetic frames: a flat 10 x 10 vent of 1 cm cells in z = 0 and a sphere of radius 3 cm above it. Frame A:
 the sphere 3 cm clear, nothing blocked. Frame B: the sphere touching the vent's centre, the faces around
@@ -13,8 +13,8 @@ pv = pytest.importorskip("pyvista")
 Image = pytest.importorskip("PIL.Image")
 trimesh = pytest.importorskip("trimesh")
 
-from cases import render
-from cases.render import (
+import cases.results.render as render
+from cases.results.render import (
     BLOCKED_RGB,
     UNBLOCKED_RGB,
     Frame,
@@ -24,7 +24,7 @@ from cases.render import (
     render_frame,
     write_vtk_series,
 )
-from cases.render_vtk import polygon_cells
+from cases.results.render_vtk import polygon_cells
 
 N, H = 10, 0.01  # cells per side, cell size [m]
 

@@ -36,7 +36,7 @@ def test_a_fresh_fit_fills_the_user_cache_and_is_read_back(tmp_path, monkeypatch
 
 
 def test_a_run_with_builtin_species_does_not_import_coolprop():
-    code = ("import sys; from cases.scene import load_scene; from cases.build import build_model; "
+    code = ("import sys; from cases.scene.files import load_scene; from cases.model.build import build_model; "
             "build_model(load_scene('cases/airbag_vented.toml')); print('CoolProp' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

@@ -16,11 +16,11 @@ import pyarrow.parquet as pq
 import pytest
 
 from cases.cli import main
-from cases.errors import SceneError
-from cases.runner import run_scene
-from cases.scene import scene_from_dict
-from cases.sweep import _outcomes, figures, plan_sweep, sweep
-from cases.sweep_design import (SweepError, apply_variant, lhs_design, make_design, parse_values, resolve_key,
+from cases.scene.errors import SceneError
+from cases.run.runner import run_scene
+from cases.scene.files import scene_from_dict
+from cases.sweep.parallel import _outcomes, figures, plan_sweep, sweep
+from cases.sweep.design import (SweepError, apply_variant, lhs_design, make_design, parse_values, resolve_key,
                                 variant_id)
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,9 +11,9 @@ import math
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import load_scene
 from tests import closed_forms as cf
 
 N2_M = 0.0280134

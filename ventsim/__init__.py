@@ -12,8 +12,8 @@ runner, outputs, pictures). See ``docs/python.md``.
 """
 from __future__ import annotations
 
-from cases.errors import SceneError
-from cases.provenance import version as _version
+from cases.scene.errors import SceneError
+from cases.run.provenance import version as _version
 
 from .results import Results, run
 from .scene import Scene, load

@@ -18,7 +18,7 @@ class Results:
         What ``summary.json`` holds (peaks, final state, mass balance, solver statistics, provenance).
     scene : ventsim.Scene
         The scene that ran.
-    raw : cases.runner.Results
+    raw : cases.run.runner.Results
         The runner's results (model, trajectory with dense output, history array).
     """
 
@@ -59,7 +59,7 @@ class Results:
     def plot(self, path=None):
         """The history figure (pressure, gauge pressure, temperature, flows, vent area, ... against time):
         a ``matplotlib.figure.Figure``; also written to ``path`` (PNG) when given."""
-        from cases.output import history_figure, plot_history
+        from cases.results.output import history_figure, plot_history
 
         if path is not None:
             plot_history(Path(path), self.raw.columns, self.raw.history, self.scene.title)
@@ -68,18 +68,18 @@ class Results:
     def to_vtk(self, folder) -> list:
         """Write the VTK series (every surface of the scene, ``.vtp`` frames and a ``.pvd``) into ``folder``;
         returns the ``.pvd`` paths (empty when the scene has no geometry)."""
-        from cases.pictures import write_vtk
+        from cases.results.pictures import write_vtk
 
         return write_vtk(self.raw, Path(folder))
 
     def save(self, folder, *, render: bool = False) -> dict:
         """Write history.csv, summary.json, history.png (and with ``render`` the pictures and the VTK series)
         into ``folder``, as ``ventsim run`` does; returns ``{kind: path}``."""
-        from cases.output import write_results
+        from cases.results.output import write_results
 
         paths = write_results(self.raw, Path(folder))
         if render:
-            from cases.pictures import write_pictures
+            from cases.results.pictures import write_pictures
 
             pics = write_pictures(self.raw, Path(folder))
             paths.update({f"{k} {i}": p for k, v in pics.items() for i, p in enumerate(v)})
@@ -98,8 +98,8 @@ def run(scene, *, progress: bool = False) -> Results:
     >>> r.history.columns[:3].tolist()
     ['time [s]', 'tank.pressure [Pa]', 'tank.gauge_pressure [Pa]']
     """
-    from cases.build import build_model
-    from cases.runner import run as run_model
+    from cases.model.build import build_model
+    from cases.run.runner import run as run_model
 
     from .scene import Scene, load
 

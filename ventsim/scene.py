@@ -1,9 +1,9 @@
 """A scene built from Python (dicts, lists, arrays, trimesh meshes) or read from a TOML file.
 
-A Python scene is validated by the very code that validates a TOML file (:func:`cases.scene.scene_from_dict`):
+A Python scene is validated by the very code that validates a TOML file (:func:`cases.scene.files.scene_from_dict`):
 every array becomes a CSV table and every mesh a PLY file (double precision) in a private folder, named after the
 key that holds it, and the dict then goes through the loader like a parsed TOML file. An error is therefore the
-same one-line :class:`cases.errors.SceneError` naming the key.
+same one-line :class:`cases.scene.errors.SceneError` naming the key.
 """
 from __future__ import annotations
 
@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cases.errors import SceneError
+from cases.scene.errors import SceneError
 from cavity.tables import Table
-from cases.scene import load_scene, read_scene_data, scene_from_dict
+from cases.scene.files import load_scene, read_scene_data, scene_from_dict
 
 __all__ = ["Scene", "load"]
 
@@ -118,7 +118,7 @@ class Scene:
 
     Raises
     ------
-    cases.errors.SceneError
+    cases.scene.errors.SceneError
         One line naming the key and what was expected, exactly as for a TOML file.
 
     Examples
@@ -130,7 +130,7 @@ class Scene:
     >>> Scene(time={"end": 0.01}, cavity=[{"name": "tank", "presure": 2e5}])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    cases.errors.SceneError: <python scene>: cavity[0].presure: unknown key (did you mean 'pressure'?); ...
+    cases.scene.errors.SceneError: <python scene>: cavity[0].presure: unknown key (did you mean 'pressure'?); ...
     """
 
     def __init__(self, data: dict | None = None, /, *, base=None, name: str = "<python scene>", **tables):
@@ -162,8 +162,8 @@ class Scene:
 
     @property
     def sha256(self) -> str:
-        """The scene's hash (:func:`cases.provenance.scene_hash`), as written to summary.json."""
-        from cases.provenance import scene_hash
+        """The scene's hash (:func:`cases.run.provenance.scene_hash`), as written to summary.json."""
+        from cases.run.provenance import scene_hash
 
         return scene_hash(self.spec)
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import SceneError
-from .imported import Imported
-from .units import SYSTEMS
+from cases.scene.errors import SceneError
+from cases.decks.imported import Imported
+from cases.decks.units import SYSTEMS
 
 __all__ = ["import_deck", "deck_scene", "is_deck", "DECK_SUFFIXES", "Imported", "SYSTEMS"]
 
@@ -34,9 +34,9 @@ def import_deck(path, units: str = "SI") -> Imported:
     if kind is None:
         raise SceneError(path, "", f"not a deck: expected one of {', '.join(DECK_SUFFIXES)}")
     if kind == "abaqus":
-        from .abaqus_model import read_abaqus as read
+        from cases.decks.abaqus_model import read_abaqus as read
     else:
-        from .lsdyna import read_lsdyna as read
+        from cases.decks.lsdyna import read_lsdyna as read
     try:
         return read(path, units)
     except SceneError:
@@ -48,8 +48,8 @@ def import_deck(path, units: str = "SI") -> Imported:
 
 def deck_scene(path, toml_path, units: str = "SI", *, imported: Imported | None = None):
     """Import the deck, write the scene TOML and its files at ``toml_path``, and load the scene from them."""
-    from ..scene import scene_from_dict
-    from .write_scene import write_imported
+    from cases.scene.files import scene_from_dict
+    from cases.decks.write_scene import write_imported
 
     imported = imported or import_deck(path, units)
     toml_path = write_imported(imported, toml_path)

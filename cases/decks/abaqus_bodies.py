@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from .abaqus_fluid import floats
+from cases.decks.abaqus_fluid import floats
 
 __all__ = ["read_contact", "blockers"]
 
@@ -40,7 +40,7 @@ def read_contact(deck, kw, parent):
         node, elset = kw.param("REF NODE"), kw.label("ELSET")
         if elset is None or elset not in deck.mesh.elsets:
             raise kw.error("ventsim reads rigid bodies given by ELSET= (a defined element set)")
-        from .abaqus_fluid import ref_node
+        from cases.decks.abaqus_fluid import ref_node
         deck.rigid_bodies.append((ref_node(deck, kw), set(deck.mesh.elsets[elset]), kw))
     elif kw.name == "BOUNDARY":
         _boundary(deck, kw)

@@ -12,7 +12,7 @@ OUTFLOW ONLY, AMPLITUDE.
 """
 from __future__ import annotations
 
-from .abaqus_fluid import floats, ref_node
+from cases.decks.abaqus_fluid import floats, ref_node
 
 __all__ = ["read_exchange", "exchange_entries", "LAWS"]
 

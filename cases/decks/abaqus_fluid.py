@@ -11,7 +11,7 @@ p + p_A = ρ R (θ − θ_Z), Analysis User's Guide "Fluid cavity definition"); 
 """
 from __future__ import annotations
 
-from .conversions import R_U, hydraulic_density
+from cases.decks.conversions import R_U, hydraulic_density
 
 __all__ = ["read_behaviors", "read_initial", "cavity_entry", "species_entries", "floats", "ref_node", "R_U"]
 

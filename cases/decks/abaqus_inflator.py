@@ -11,7 +11,7 @@ for TANK TEST and DUAL PRESSURE, as in Abaqus).
 """
 from __future__ import annotations
 
-from .abaqus_fluid import floats, ref_node
+from cases.decks.abaqus_fluid import floats, ref_node
 
 __all__ = ["read_inflator", "inflator_entries"]
 

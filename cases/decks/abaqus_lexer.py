@@ -20,8 +20,8 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import SceneError
-from .deck_io import deck_error, deck_lines, include_target
+from cases.scene.errors import SceneError
+from cases.decks.deck_io import deck_error, deck_lines, include_target
 
 __all__ = ["Keyword", "DataLine", "read_keywords", "deck_error", "keyword_name", "KEYWORDS"]
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .deck_io import deck_error
+from cases.decks.deck_io import deck_error
 
 __all__ = ["Mesh", "Surface", "read_mesh", "SURFACE_ELEMENTS", "face_nodes"]
 

@@ -1,4 +1,4 @@
-"""An Abaqus/Explicit fluid-cavity deck -> the scene dict a TOML file gives (``cases.scene.scene_from_dict``).
+"""An Abaqus/Explicit fluid-cavity deck -> the scene dict a TOML file gives (``cases.scene.files.scene_from_dict``).
 
 Keywords that matter to the gas are mapped (docs/decks.md lists each one and what it becomes); keywords of the
 structure (materials, sections, output, general contact) are listed once as ``ignored: *KEYWORD (line N)``; a
@@ -9,16 +9,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import SceneError
-from ..schema import suggest
-from . import abaqus_bodies, abaqus_exchange, abaqus_fluid, abaqus_inflator
-from .abaqus_lexer import read_keywords
-from .abaqus_mesh import face_nodes, read_mesh
-from .abaqus_parts import flatten_parts
-from .deck_io import deck_error, faces_area, ignored_line
-from .imported import Imported
-from .units import unit_system
-from .write_scene import csv_text, obj_text
+from cases.scene.errors import SceneError
+from cases.scene.schema import suggest
+from cases.decks import abaqus_bodies, abaqus_exchange, abaqus_fluid, abaqus_inflator
+from cases.decks.abaqus_lexer import read_keywords
+from cases.decks.abaqus_mesh import face_nodes, read_mesh
+from cases.decks.abaqus_parts import flatten_parts
+from cases.decks.deck_io import deck_error, faces_area, ignored_line
+from cases.decks.imported import Imported
+from cases.decks.units import unit_system
+from cases.decks.write_scene import csv_text, obj_text
 
 __all__ = ["read_abaqus"]
 

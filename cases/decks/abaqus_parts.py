@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .abaqus_lexer import DataLine, Keyword
+from cases.decks.abaqus_lexer import DataLine, Keyword
 
 __all__ = ["flatten_parts"]
 

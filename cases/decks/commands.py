@@ -4,7 +4,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from . import SYSTEMS, deck_scene, import_deck, is_deck
+from cases.decks import SYSTEMS, deck_scene, import_deck, is_deck
 
 __all__ = ["scene_for_run", "add_import_parser"]
 

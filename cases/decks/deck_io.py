@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SceneError
+from cases.scene.errors import SceneError
 
 __all__ = ["deck_error", "include_target", "deck_lines", "ignored_line", "faces_area"]
 

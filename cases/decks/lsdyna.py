@@ -18,13 +18,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import SceneError
-from .imported import Imported
-from .deck_io import ignored_line
-from .lsdyna_bags import bag_entries
-from .lsdyna_cards import W10, fields, read_dyna
-from .units import unit_system
-from .write_scene import csv_text
+from cases.scene.errors import SceneError
+from cases.decks.imported import Imported
+from cases.decks.deck_io import ignored_line
+from cases.decks.lsdyna_bags import bag_entries
+from cases.decks.lsdyna_cards import W10, fields, read_dyna
+from cases.decks.units import unit_system
+from cases.decks.write_scene import csv_text
 
 __all__ = ["read_lsdyna"]
 

@@ -5,11 +5,11 @@ AIRBAG_MODEL, *AIRBAG_WANG_NEFSKE, *AIRBAG_INTERACTION, *MAT_FABRIC (FLC, FAC, E
 """
 from __future__ import annotations
 
-from .conversions import constant_cp_species
-from .deck_io import faces_area
-from .lsdyna_cards import W10, fields, refuse
-from .lsdyna_hybrid import hybrid_gas
-from .write_scene import obj_text
+from cases.decks.conversions import constant_cp_species
+from cases.decks.deck_io import faces_area
+from cases.decks.lsdyna_cards import W10, fields, refuse
+from cases.decks.lsdyna_hybrid import hybrid_gas
+from cases.decks.write_scene import obj_text
 
 __all__ = ["bag_entries"]
 

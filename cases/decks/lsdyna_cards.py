@@ -13,8 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import SceneError
-from .deck_io import deck_error, deck_lines, include_target
+from cases.scene.errors import SceneError
+from cases.decks.deck_io import deck_error, deck_lines, include_target
 
 __all__ = ["DynaKeyword", "read_dyna", "fields", "refuse", "W10"]
 

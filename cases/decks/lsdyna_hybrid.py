@@ -10,7 +10,7 @@ PVENT (gauge pressure at which venting starts) is the vent's pop pressure.
 """
 from __future__ import annotations
 
-from .lsdyna_cards import W10, fields, refuse
+from cases.decks.lsdyna_cards import W10, fields, refuse
 
 __all__ = ["hybrid_gas"]
 

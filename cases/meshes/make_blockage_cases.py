@@ -6,7 +6,7 @@ import numpy as np
 import trimesh
 
 import blockage
-from cases.area_track import node_weights
+from cases.model.area_track import node_weights
 
 HERE = Path(__file__).resolve().parent
 

@@ -1,7 +1,7 @@
 """The rigid-box deck the deck tests vary: its nodes, surface and N2 behaviour, and a writer for variants."""
 from __future__ import annotations
 
-from cases.library import HERE
+from cases.run.library import HERE
 
 BOX = (HERE / "decks" / "box_mesh.inp").read_text()
 HEAD = """*HEADING

@@ -9,8 +9,8 @@ import trimesh
 import blockage
 from blockage.reference import evaluate_reference
 from cases.decks import deck_scene
-from cases.library import HERE
-from cases.runner import run_scene
+from cases.run.library import HERE
+from cases.run.runner import run_scene
 
 A_EFF, SPEED, H, C0 = 2.0e-4, 2.0, 0.0005, 0.001  # effective area [m^2], plate speed [m/s], gap, clearance [m]
 

@@ -9,9 +9,9 @@ import pytest
 
 from cases.cli import main
 from cases.decks import deck_scene, import_deck
-from cases.errors import SceneError
-from cases.library import column_errors
-from cases.runner import run_scene
+from cases.scene.errors import SceneError
+from cases.run.library import column_errors
+from cases.run.runner import run_scene
 
 from .box_decks import BOX, head, write
 

@@ -7,8 +7,8 @@ import shutil
 import pytest
 
 from cases.decks import import_deck
-from cases.errors import SceneError
-from cases.library import HERE
+from cases.scene.errors import SceneError
+from cases.run.library import HERE
 
 DECKS = ["box_blowdown.inp", "vented_box_blockage.inp", "hydraulic_two_cavity.inp", "wang_nefske_bag.k"]
 

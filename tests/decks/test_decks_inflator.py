@@ -7,8 +7,8 @@ import pytest
 
 import tests.closed_forms as cf
 from cases.decks import deck_scene, import_deck
-from cases.errors import SceneError
-from cases.runner import run_scene
+from cases.scene.errors import SceneError
+from cases.run.runner import run_scene
 
 from .box_decks import head
 from .box_decks import write as write_deck

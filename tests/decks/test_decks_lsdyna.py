@@ -7,9 +7,9 @@ import numpy as np
 
 from cases.decks import deck_scene, import_deck
 from cases.decks.conversions import R_U
-from cases.runner import run_scene
-from cases.errors import SceneError
-from cases.library import HERE, column_errors
+from cases.run.runner import run_scene
+from cases.scene.errors import SceneError
+from cases.run.library import HERE, column_errors
 
 BAG = (HERE / "decks" / "wang_nefske_bag.k").read_text()
 

@@ -7,9 +7,9 @@ import pytest
 from cases.decks import deck_scene, import_deck
 from cases.decks.abaqus_lexer import read_keywords
 from cases.decks.abaqus_parts import flatten_parts
-from cases.errors import SceneError
-from cases.library import HERE, column_errors
-from cases.runner import run_scene
+from cases.scene.errors import SceneError
+from cases.run.library import HERE, column_errors
+from cases.run.runner import run_scene
 
 FLAT = (HERE / "decks" / "vented_box_blockage.inp").read_text()
 MESH = (HERE / "decks" / "vented_box_mesh.inp").read_text()

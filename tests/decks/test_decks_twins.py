@@ -10,9 +10,9 @@ import pytest
 
 import tests.closed_forms as cf
 from cases.decks import deck_scene
-from cases.library import DECK_TWINS, HERE, column_errors
-from cases.runner import run_scene
-from cases.scene import load_scene
+from cases.run.library import DECK_TWINS, HERE, column_errors
+from cases.run.runner import run_scene
+from cases.scene.files import load_scene
 
 DECKS = Path(HERE) / "decks"
 

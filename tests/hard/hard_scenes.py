@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import scene_from_dict
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import scene_from_dict
 from tests.scenes import tank
 
 R_U = 8.314462618

@@ -4,9 +4,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cases.build import build_model
-from cases.runner import run
-from cases.scene import load_scene
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import load_scene
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 
 VALIDATION = Path(__file__).resolve().parents[2] / "cases" / "validation"
@@ -97,7 +97,7 @@ volume = 0.01
     ('fluid = "real_gas"', 'energy = "wall"', "cavity[0].energy"),
 ])
 def test_bad_real_gas_keys_name_the_key(tmp_path, old, new, where):
-    from cases.errors import SceneError
+    from cases.scene.errors import SceneError
 
     path = tmp_path / "s.toml"
     assert old in SCENE

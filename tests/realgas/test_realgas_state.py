@@ -51,9 +51,9 @@ def test_ideal_gas_fluid_state_is_the_closed_form():
 def test_isentropic_expansion_conserves_entropy(tmp_path):
     """N2 at 300 bar in a rigid-walled cylinder whose volume triples (dU = −p dV, adiabatic): the entropy at the
     end equals the initial one, |Δs|/cv <= 1e-8 (a relative temperature error of 1e-8)."""
-    from cases.build import build_model
-    from cases.runner import run
-    from cases.scene import load_scene
+    from cases.model.build import build_model
+    from cases.run.runner import run
+    from cases.scene.files import load_scene
 
     (tmp_path / "v.csv").write_text("time [s],volume [m^3]\n0,0.01\n0.01,0.03\n")
     (tmp_path / "s.toml").write_text("""

@@ -46,9 +46,9 @@ def test_real_gas_tank_states_are_heos_at_every_row():
 
 def test_scene_with_a_real_gas_tank_test_inflator(tmp_path):
     """A rigid cavity filled by a real-gas tank-test inflator receives exactly the tank's mass gain."""
-    from cases.build import build_model
-    from cases.runner import run
-    from cases.scene import load_scene
+    from cases.model.build import build_model
+    from cases.run.runner import run
+    from cases.scene.files import load_scene
 
     (tmp_path / "p.csv").write_text("time [s],p [Pa]\n0,1.0e7\n0.01,1.5e7\n0.03,2.0e7\n")
     (tmp_path / "s.toml").write_text("""

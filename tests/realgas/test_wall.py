@@ -31,9 +31,9 @@ def test_closed_tank_relaxes_to_its_wall(tmp_path):
     """N2 at 1 bar, 350 K in a rigid 10 L tank with a 0.5 kg wall at 300 K, h_i given, no outer loss: the
     temperature difference decays as exp(−t/τ), 1/τ = h_i A (1/(m c_v) + 1/(m_w c_w)), to the accuracy of a
     constant c_v (measured 2.3e-4; bound 5e-3); the common final temperature conserves energy."""
-    from cases.build import build_model
-    from cases.runner import run
-    from cases.scene import load_scene
+    from cases.model.build import build_model
+    from cases.run.runner import run
+    from cases.scene.files import load_scene
 
     (tmp_path / "s.toml").write_text("""
 [time]

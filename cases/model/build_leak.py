@@ -1,0 +1,198 @@
+"""Build the leakage area of a blocked exchange along θ: its surface, how its nodes and blockers move, the
+certified crossings and the incremental area track."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+
+import blockage
+from cavity.caution import caution
+
+from cases.model.area_track import AreaTrack, node_weights
+from cases.model.crossings import RESOLUTION, SearchBudget, certified_crossings
+from cases.scene.errors import SceneError
+from cases.model.mesh_series import SUFFIXES, read_mesh_series
+from cases.model.gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
+from cases.model.scene_network import GeometricArea
+
+__all__ = ["build_leak_area", "placement_of", "leak_surface", "blockage_rule"]
+
+#: Gaps are exact up to this many contact tolerances (at least CUTOFF_EXTENT of the surface's size) [-].
+CUTOFF_TOLERANCES = 8.0
+CUTOFF_EXTENT = 0.02
+#: Crossings of a prescribed motion closer than GROUP_WINDOW·√rtol of the run share one switch
+#: (:meth:`cases.model.area_track.AreaTrack.grouped`: blocked area·time kept exact, flow changed to second order).
+GROUP_WINDOW = 0.0
+
+
+def leak_surface(scene, j, cavity_meshes):
+    """(LeakageSurface, the cavity spec it was cut from or None, its own (times, vertices) or None) of exchange j;
+    a leakage_surface given as a mesh series (.pvd, .xdmf, .npz) moves on its own."""
+    e, where = scene.exchange[j], f"exchange[{j}]"
+    if e.leakage_surface and Path(e.leakage_surface).suffix.lower() in SUFFIXES:
+        series = read_mesh_series(scene.base / e.leakage_surface, where=f"{where}.leakage_surface",
+                                  scene_path=scene.path)
+        return blockage.LeakageSurface(series.vertices[0], series.faces), None, (series.times, series.vertices)
+    if e.leakage_surface:
+        try:
+            return blockage.LeakageSurface.read(scene.base / e.leakage_surface), None, None
+        except Exception as exc:
+            raise SceneError(scene.path, f"{where}.leakage_surface", f"cannot read {e.leakage_surface!r}: {exc}") \
+                from None
+    mesh = cavity_meshes[e.from_]
+    lo, hi = np.array(e.leakage_box[:3]), np.array(e.leakage_box[3:])
+    try:
+        surface = blockage.LeakageSurface.from_region(mesh, box=(lo, hi))
+    except ValueError as exc:
+        raise SceneError(scene.path, f"{where}.leakage_box", str(exc)) from None
+    return surface, next(c for c in scene.cavity if c.name == e.from_), None
+
+
+def placement_of(driver, name, open_depth=0.0):
+    """The gap placement (:mod:`cases.model.gaps`) of body ``name`` along the driver's θ."""
+    body, blocker = driver.bodies[name]
+    if body.deforming:
+        copy = blockage.Blocker(body.mesh)
+        return DeformingPlacement(copy, (body.motion.times, body.motion.vertices), open_depth)
+    if driver.dynamic is not None:
+        if body is driver.dynamic:
+            return RigidPlacement(blocker, body.axis, velocity=1.0, open_depth=open_depth)  # θ = s
+        return RigidPlacement(blocker, body.axis, open_depth=open_depth)  # held where it starts
+    m = body.motion
+    return RigidPlacement(blocker, body.axis, displacement=m.table, velocity=m.velocity, angle=m.rotation_table,
+                          rotation_axis=m.rotation_axis, centre=m.rotation_centre, open_depth=open_depth)
+
+
+def _node_path(scene, surface, cavity, series):
+    """How the leakage nodes move: with the cavity mesh's scale table or its mesh series when cut from it."""
+    x0 = np.asarray(surface.vertices, dtype=float)
+    if cavity is not None and cavity.name in series:
+        times, vertices = series[cavity.name]
+        return NodePath(x0, trajectory=(times, vertices[:, surface.source_vertices]))
+    if cavity is not None and cavity.mesh_scale_table:
+        from cases.scene.tables_io import read_table
+
+        i = [c.name for c in scene.cavity].index(cavity.name)
+        scale = read_table(scene.base / cavity.mesh_scale_table, scene.path, f"cavity[{i}].mesh_scale_table",
+                           "scale [-]")
+        return NodePath(x0, scale=scale)
+    return NodePath(x0)
+
+
+def read_nodes(scene, j):
+    """(x (n, 3) [m], area (n,) [m^2] or None) of a node-based leakage surface (CSV: x, y, z[, area])."""
+    e, key = scene.exchange[j], f"exchange[{j}].leakage_nodes"
+    try:
+        rows = np.genfromtxt(scene.base / e.leakage_nodes, delimiter=",", comments="#", dtype=float)
+    except (OSError, ValueError) as exc:
+        raise SceneError(scene.path, key, f"cannot read {e.leakage_nodes!r}: {exc}") from None
+    rows = np.atleast_2d(rows)
+    if rows.shape[0] and not np.all(np.isfinite(rows[0])):
+        rows = rows[1:]  # a header row
+    if rows.ndim != 2 or rows.shape[1] not in (3, 4) or not len(rows) or not np.all(np.isfinite(rows)):
+        raise SceneError(scene.path, key, f"{e.leakage_nodes!r}: expected rows of x, y, z [m] and optionally "
+                                          "area [m^2], all finite numbers")
+    if rows.shape[1] == 4 and not np.all(rows[:, 3] >= 0):
+        raise SceneError(scene.path, key, f"{e.leakage_nodes!r}: node areas must be >= 0 [m^2]")
+    return rows[:, :3].copy(), (rows[:, 3].copy() if rows.shape[1] == 4 else None)
+
+
+def _knots(driver, path, lo, hi):
+    pts = set(driver.breakpoints) if driver.dynamic is None else set()
+    if path.scale is not None:
+        pts |= set(path.scale.breakpoints)
+    if path.trajectory is not None:
+        pts |= {float(t) for t in path.trajectory[0]}
+    return np.array([lo] + sorted(p for p in pts if lo < p < hi) + [hi])
+
+
+def _weights_at(surface, path):
+    """θ -> (node weights, total area) of a surface whose nodes move on a trajectory (face areas at θ)."""
+    idx = np.arange(len(surface.vertices))
+
+    def at(theta):
+        moved = surface.with_vertices(path.positions(np.full(len(idx), float(theta)), idx))
+        return node_weights(moved.face_areas, moved.faces, moved.face_sizes, len(idx)), moved.total_area
+    return at
+
+
+def _search(scene, j, field, n, knots):
+    """The certified crossings of exchange j within the scene's wall budget, with a caution when leaves of the
+    resolution stayed unsettled (a graze shorter than it may be missed)."""
+    wall = getattr(getattr(scene, "limits", None), "wall", 0.0) or np.inf
+    try:
+        found = certified_crossings(field.excess, n, knots, field.speed(knots), deadline=time.perf_counter() + wall)
+    except SearchBudget as exc:
+        raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"the crossing search of the leakage surface "
+                                                                  f"stopped at limits.wall = {wall:g} s ({exc}); "
+                                                                  "raise limits.wall or coarsen the surface") from None
+    if found.unresolved:
+        caution(f"exchange {scene.exchange[j].name}: {found.unresolved} node intervals hover within the bound of the "
+                "contact tolerance and were not bisected further: a contact shorter than that may be missed there")
+    return found
+
+
+def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
+    """(GeometricArea, (surface or None, positions)) of exchange j, or (None, None) when it has a plain area.
+
+    ``series``: {cavity name: (times, vertices)} of cavities given as mesh series."""
+    e = scene.exchange[j]
+    if not (e.leakage_surface or e.leakage_box or e.leakage_nodes):
+        return None, None
+    tol = e.contact_tolerance or 1e-300
+    options = {"effective_area": e.effective_area or None, "permeability": e.permeability}
+    if e.leakage_nodes:
+        surface, (x0, node_area) = None, read_nodes(scene, j)
+        path = NodePath(x0)
+        weights = node_area if node_area is not None else np.ones(len(x0))
+        total = float(weights.sum())
+    else:
+        surface, cavity, own = leak_surface(scene, j, cavity_meshes)
+        path = NodePath(surface.vertices, trajectory=own) if own is not None else \
+            _node_path(scene, surface, cavity, series or {})
+        weights = node_weights(surface.face_areas, surface.faces, surface.face_sizes, len(surface.vertices))
+        total = surface.total_area
+        options.update(scale=path.scale, weights_at=_weights_at(surface, path) if path.trajectory else None)
+    depth = float(e.penetration_depth or 0.0)
+    placements = [placement_of(driver, n, depth) for n in e.blocked_by]
+    if e.self_contact:
+        placements.append(SelfPlacement(blockage.Blocker(cavity_meshes[e.from_]), surface.source_vertices,
+                                        path.scale, (series or {}).get(e.from_)))
+    size = float(np.linalg.norm(np.ptp(path.x0, axis=0)))
+    field = GapField(path, placements, tol, max(CUTOFF_TOLERANCES * tol, CUTOFF_EXTENT * size),
+                     surface.edges if e.edge_contact else None)
+    knots = _knots(driver, path, driver.lo, driver.hi)
+    found = _search(scene, j, field, len(path.x0), knots)
+    track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
+    if driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
+        track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
+
+    def positions(theta, nodes=None):
+        idx = np.arange(len(path.x0)) if nodes is None else np.asarray(nodes)
+        return path.positions(np.full(len(idx), float(theta)), idx)
+
+    return GeometricArea(track, driver.dynamic is None), (surface, positions)
+
+
+def blockage_rule(scene, j) -> dict:
+    """What the blockage of exchange j models, for summary.json ("blockage")."""
+    e = scene.exchange[j]
+    surface = "node-based (active nodes / all, or their share of the area)" if e.leakage_nodes else \
+        "element-based: each face loses A_e*N_c/N_e"
+    rule = ("a leakage node is active when its distance to a blocking surface is <= the contact tolerance, or "
+            "when it lies inside a closed blocker (any depth)")
+    if e.penetration_depth:
+        rule += f", or behind an open blocker's interior within {e.penetration_depth} m"
+    if e.edge_contact:
+        rule += "; both nodes of a leakage edge within the tolerance of a blocker's feature edge are active"
+    if e.self_contact:
+        rule += "; the cavity's own surface blocks too (faces sharing the node ignored)"
+    return {"rule": rule, "surface": surface, "tolerance [m]": e.contact_tolerance,
+            "side test": "angle-weighted pseudonormal at the closest point (Baerentzen & Aanaes 2005)",
+            "guarantee": f"every contact and release lasting at least {RESOLUTION:g} of the searched range (the "
+                         "run, or the body's travel) is found and timed to machine precision: Lipschitz bound on "
+                         "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi",
+            "area switches shared": f"crossings within {GROUP_WINDOW:g}*sqrt(rtol) of the run share one switch"
+                                    if GROUP_WINDOW > 0 else "none: every crossing is a switch"}

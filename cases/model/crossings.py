@@ -1,0 +1,171 @@
+"""Certified search of the instants at which leakage nodes enter and leave contact.
+
+A node's *excess* f(θ) = gap(θ) − tolerance (≤ 0: active) is a distance, so it changes no faster than the
+node's speed relative to the blocker: |f(θ₁) − f(θ₂)| ≤ L·|θ₁ − θ₂| on a knot interval of the motion, where the
+bound L comes from the motion (:mod:`cases.model.gaps`). From the values at the ends of an interval [a, b] of length h,
+
+    min f ≥ (f(a) + f(b) − L·h) / 2,        max f ≤ (f(a) + f(b) + L·h) / 2,
+
+so an interval is *settled* (the node is out of contact all along, or in contact all along) when the first bound
+is > 0 or the second ≤ 0. Every unsettled interval is bisected, all nodes together (one batched gap query per
+level), until it is settled or shorter than the resolution h_min; the leaves whose ends differ in state hold a
+crossing, located to a few ulp by regula falsi (Illinois). Guarantee: every contact, and every release, that
+lasts at least h_min is found and timed to machine precision; a contact shorter than h_min can be missed, and
+then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). The one
+exception is a node whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES`
+sub-intervals of a knot interval (a plate sliding along a seat just outside the tolerance): that pair is not
+bisected further, its crossings found so far are kept, and it is counted in ``unresolved`` (a warning).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Crossings", "certified_crossings", "RESOLUTION", "batched_roots", "SearchBudget", "MAX_PENDING"]
+
+#: h_min as a fraction of the searched range of θ.
+RESOLUTION = 1e-10
+#: Unsettled (node, interval) pairs at one bisection level beyond which the search stops (memory).
+MAX_PENDING = 20_000_000
+#: Unsettled sub-intervals of one (node, knot interval) beyond which that pair is not bisected further: its gap
+#: hovers within the bound of the tolerance (a plate sliding along a seat just outside it); counted as unresolved.
+MAX_LEAVES = 64
+
+
+class SearchBudget(RuntimeError):
+    """The crossing search ran past its wall-time deadline or its pending-pair budget."""
+
+
+@dataclass(frozen=True)
+class Crossings:
+    """Contact changes of n nodes on [lo, hi]: ``initial`` (n,) bool active at lo; ``theta`` (c,) sorted, the
+    node (c,) and its state after (c,) bool; ``resolution`` h_min; ``evaluations`` gap queries made;
+    ``unresolved`` sub-intervals of (node, knot interval) pairs left unbisected under :data:`MAX_LEAVES` though
+    the bound could not settle them (a graze may hide there; grazes shorter than h_min are within the guarantee
+    and not counted)."""
+
+    initial: np.ndarray
+    theta: np.ndarray
+    node: np.ndarray
+    state: np.ndarray
+    resolution: float
+    evaluations: int = 0
+    unresolved: int = 0
+
+    def active_at(self, theta: float) -> np.ndarray:
+        """(n,) bool: active nodes at θ (right limit at a crossing)."""
+        active = self.initial.copy()
+        k = int(np.searchsorted(self.theta, theta, side="right"))
+        active[self.node[:k]] = self.state[:k]  # later crossings of a node overwrite earlier ones
+        return active
+
+
+def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLUTION,
+                        deadline: float = np.inf) -> Crossings:
+    """All crossings of f_i(θ) = 0 for nodes i < n on [knots[0], knots[-1]].
+
+    Parameters
+    ----------
+    excess : callable (thetas (k,), nodes (k,) int) -> (k,) float
+        f_i(θ) [m] for many (θ, node) pairs in one call; ≤ 0 means in contact.
+    n : int
+        Number of nodes.
+    knots : (K + 1,) float
+        Increasing θ values, the motion's breakpoints and the ends of the range.
+    speed : callable (j, nodes (k,) int) -> (k,) float
+        Bound on |df_i/dθ| on [knots[j], knots[j+1]] [m per unit of θ].
+    resolution : float
+        h_min as a fraction of the range.
+    deadline : float
+        ``time.perf_counter()`` after which :class:`SearchBudget` is raised (checked once per level).
+    """
+    knots = np.asarray(knots, dtype=float)
+    h_min = resolution * (knots[-1] - knots[0])
+    nodes = np.arange(n)
+    F = excess(np.repeat(knots, n), np.tile(nodes, len(knots))).reshape(len(knots), n)
+    evaluations = F.size
+    a = np.repeat(knots[:-1], n)
+    b = np.repeat(knots[1:], n)
+    fa, fb = F[:-1].ravel(), F[1:].ravel()
+    node = np.tile(nodes, len(knots) - 1)
+    origin = np.arange(node.size)
+    L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
+        if len(knots) > 1 else np.zeros(0)
+    brackets, unresolved = [], 0
+    while a.size:
+        if time.perf_counter() > deadline or a.size > MAX_PENDING:
+            raise SearchBudget(f"{a.size} node intervals still unsettled after {evaluations} gap evaluations")
+        h = b - a
+        settled = (((fa > 0) & (fb > 0) & (fa + fb - L * h > 0))
+                   | ((fa <= 0) & (fb <= 0) & (fa + fb + L * h <= 0)))
+        leaf = ~settled & (h <= h_min)
+        change = leaf & ((fa <= 0) != (fb <= 0))
+        if change.any():
+            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
+        split = ~settled & ~leaf
+        stuck = _crowded(split, origin, (a, b, fa, fb, node), brackets)
+        unresolved += int(np.count_nonzero(stuck & ((fa <= 0) == (fb <= 0))))
+        split &= ~stuck
+        a, b, fa, fb, node, L, origin = (v[split] for v in (a, b, fa, fb, node, L, origin))
+        if not a.size:
+            break
+        m = 0.5 * (a + b)
+        fm = excess(m, node)
+        evaluations += m.size
+        a, b = np.concatenate([a, m]), np.concatenate([m, b])
+        fa, fb = np.concatenate([fa, fm]), np.concatenate([fm, fb])
+        node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
+    return _located(F[0] <= 0, brackets, excess, h_min, evaluations, unresolved)
+
+
+def _crowded(split, origin, arrays, brackets) -> np.ndarray:
+    """(k,) bool: the intervals of (node, knot interval) pairs holding more than MAX_LEAVES unsettled ones (their
+    gap hovers at the tolerance): not bisected further; those whose ends differ go to ``brackets``."""
+    count = np.bincount(origin[split], minlength=int(origin.max()) + 1 if origin.size else 0)
+    stuck = split & (count > MAX_LEAVES)[origin]
+    if stuck.any():
+        a, b, fa, fb, node = arrays
+        change = stuck & ((fa <= 0) != (fb <= 0))
+        if change.any():
+            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
+    return stuck
+
+
+def _located(initial, brackets, excess, h_min, evaluations, unresolved) -> Crossings:
+    if not brackets:
+        empty = np.zeros(0)
+        return Crossings(initial, empty, empty.astype(np.int64), empty.astype(bool), h_min, evaluations, unresolved)
+    a, b, fa, fb, node = (np.concatenate(parts) for parts in zip(*brackets))
+    roots, calls = batched_roots(excess, node, a, b, fa, fb)
+    order = np.lexsort((node, roots))
+    return Crossings(initial, roots[order], node[order], (fb <= 0)[order], h_min, evaluations + calls, unresolved)
+
+
+def batched_roots(excess, nodes, a, b, fa, fb, iterations=200):
+    """Roots of f_i(θ) = 0 in brackets [a, b] with f(a), f(b) of opposite states, many pairs at once (Illinois
+    regula falsi on the state-preserving sign: ≤ 0 is "in"). Returns (θ where the state changes, gap calls)."""
+    a, b, fa, fb = (np.asarray(v, dtype=float).copy() for v in (a, b, fa, fb))
+    side = np.zeros(len(a))
+    calls = 0
+    for _ in range(iterations):
+        open_ = np.abs(b - a) > 4.0 * np.finfo(float).eps * np.maximum(np.abs(a), np.abs(b)) + 1e-300
+        if not open_.any():
+            break
+        idx = np.flatnonzero(open_)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = (a[idx] * fb[idx] - b[idx] * fa[idx]) / (fb[idx] - fa[idx])
+        bad = ~np.isfinite(c) | (c <= np.minimum(a[idx], b[idx])) | (c >= np.maximum(a[idx], b[idx]))
+        c[bad] = 0.5 * (a[idx][bad] + b[idx][bad])
+        fc = excess(c, nodes[idx])
+        calls += c.size
+        left = (fc <= 0) == (fa[idx] <= 0)  # same state as a: the change is in [c, b]
+        i_l, i_r = idx[left], idx[~left]
+        a[i_l], fa[i_l] = c[left], fc[left]
+        fb[i_l] = np.where(side[i_l] == 1, fb[i_l] / 2, fb[i_l])  # Illinois: halve the stale end
+        side[i_l] = 1
+        b[i_r], fb[i_r] = c[~left], fc[~left]
+        fa[i_r] = np.where(side[i_r] == -1, fa[i_r] / 2, fa[i_r])
+        side[i_r] = -1
+    return b, calls

@@ -1,0 +1,1 @@
+"""A run's results: history, summary, plots, pictures and VTK series."""

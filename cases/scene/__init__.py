@@ -1,0 +1,1 @@
+"""Scene files: TOML validated once into frozen dataclasses, with the checks and the tables they name."""

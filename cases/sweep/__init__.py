@@ -1,0 +1,1 @@
+"""Parameter sweeps on Dask: designs, variants, the sweep folder and its tables."""
