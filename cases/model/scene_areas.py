@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from exchange.network import _labelled
+from exchange.network_switches import _labelled
 
 __all__ = ["GeometricAreas", "REDERIVE_SLACK"]
 

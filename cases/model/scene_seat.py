@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
-from exchange.network import _labelled
+from exchange.network_switches import _labelled
 
 __all__ = ["SeatModes"]
 
