@@ -64,15 +64,7 @@ class CompiledNetwork:
         _announce_compilation(solve)
         model, net = self.model, self.network
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
-        eq, op, hold = model[20], model[21], model[22]
-        model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
-        model[25][1] = float(bool(getattr(net, "held", False)))
-        for j, ex in enumerate(net.exchanges):
-            eq[j] = net.equalised[j]
-            op[j] = 0 if self.model[12][j, 6] == 1 and not net.popped[j] else 1
-            hold[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
-            if self.model[12][j, 6] == 1:  # a pop vent's area at activation (set when it pops)
-                model[13][j, 9] = net.area_at_activation[j] or 0.0
+        self._load_discrete_state()
         y0 = np.asarray(y0, dtype=float)
         if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
@@ -94,14 +86,7 @@ class CompiledNetwork:
 
         model, net = self.model, self.network
         model[16][:] = [s.temperature for s in net.last_states] if net.last_states else self.T_initial
-        eq, op = model[20], model[21]
-        model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
-        model[25][1] = float(bool(getattr(net, "held", False)))  # hard contact holds the body (compiled_body)
-        for j in range(len(net.exchanges)):
-            eq[j] = net.equalised[j]
-            op[j] = 0 if model[12][j, 6] == 1 and not net.popped[j] else 1
-            if model[12][j, 6] == 1:  # a pop vent's area at activation (DELTA LEAKAGE AREA)
-                model[13][j, 9] = net.area_at_activation[j] or 0.0
+        self._load_discrete_state()
         seg_end = float(seg_end)
 
         def f(t, y):
@@ -111,6 +96,22 @@ class CompiledNetwork:
                 raise ArithmeticError(f"the gas temperature solve failed at t = {t:.9g} s")
             return out
         return f
+
+    def _load_discrete_state(self) -> None:
+        """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
+        area intervals of the dynamic body, whether hard contact holds it (compiled_body), and each pop vent's
+        area at activation (DELTA LEAKAGE AREA)."""
+        model, net = self.model, self.network
+        eq, op, hold = model[20], model[21], model[22]
+        model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
+        model[25][1] = float(bool(getattr(net, "held", False)))
+        for j in range(len(net.exchanges)):
+            pop_vent = model[12][j, 6] == 1
+            eq[j] = net.equalised[j]
+            op[j] = 0 if pop_vent and not net.popped[j] else 1
+            hold[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
+            if pop_vent:
+                model[13][j, 9] = net.area_at_activation[j] or 0.0
 
     def _mode(self, row) -> tuple:
         """The network's snapshot (:meth:`Network.snapshot`) from a row of the solver's segment table: code
