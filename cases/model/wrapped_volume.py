@@ -96,11 +96,12 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
     x0, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
     v0 = mesh_volume(x0, faces)
     node_faces = mesh.vertex_faces  # (n, k) padded with -1
-    key = _rigid_key(wrapper, grid, x0, faces)
-    if key is not None:
+    if len(wrapper.bodies) == 1 and not wrapper.bodies[0].deforming:
+        T = np.array([wrapper.bodies[0].transform(th) for th in grid])  # the body's pose at every θ
+        key = _rigid_key(wrapper.bodies[0], T, grid, x0, faces)
         vols = _RIGID_VOLUMES.get(key)
         if vols is None:
-            vols = _volumes_of_placements(_rigid_placements(wrapper, grid, x0), x0, faces, node_faces, v0)
+            vols = _volumes_of_placements(_rigid_placements(wrapper, grid, x0, T), x0, faces, node_faces, v0)
             _RIGID_VOLUMES[key] = vols
             while len(_RIGID_VOLUMES) > 8:
                 del _RIGID_VOLUMES[next(iter(_RIGID_VOLUMES))]
@@ -122,13 +123,10 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
 _RIGID_VOLUMES: dict = {}
 
 
-def _rigid_key(wrapper: Wrapper, grid, x0, faces) -> str | None:
-    """Content digest of a one-rigid-body wrapping on ``grid`` (None for several or deforming bodies)."""
-    if len(wrapper.bodies) != 1 or wrapper.bodies[0].deforming:
-        return None
-    body = wrapper.bodies[0]
+def _rigid_key(body, T, grid, x0, faces) -> str:
+    """Content digest of one rigid body's wrapping on ``grid``, its poses ``T`` (grid, 4, 4)."""
     digest = hashlib.sha1()
-    for a in (x0, faces, grid, np.array([body.transform(th) for th in grid]), body.mesh.vertices, body.mesh.faces):
+    for a in (x0, faces, grid, T, body.mesh.vertices, body.mesh.faces):
         digest.update(np.ascontiguousarray(a).tobytes())
     return digest.hexdigest()
 
@@ -144,7 +142,7 @@ def _volumes_of_placements(placed, x0, faces, node_faces, v0) -> np.ndarray:
     return v0 + mesh_volumes(placed, touched) - mesh_volume(x0, touched)
 
 
-def _rigid_placements(wrapper: Wrapper, grid, x0):
+def _rigid_placements(wrapper: Wrapper, grid, x0, T):
     """Node positions of the wrapped mesh at every θ of ``grid`` in one tree query (one rigid body).
 
     In the body's own frame the body is fixed and the nodes move: all (θ, node) pairs near the body are
@@ -152,7 +150,6 @@ def _rigid_placements(wrapper: Wrapper, grid, x0):
     """
     body = wrapper.bodies[0]
     blocker = wrapper.placed(grid[0])[0][0]
-    T = np.array([body.transform(th) for th in grid])
     sphere = body.mesh.bounding_sphere.primitive
     centres = np.einsum("gij,j->gi", T[:, :3, :3], sphere.center) + T[:, :3, 3]  # world, per θ
     lo, hi = centres.min(axis=0) - sphere.radius, centres.max(axis=0) + sphere.radius
