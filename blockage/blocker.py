@@ -16,17 +16,14 @@ from typing import NamedTuple
 
 import numpy as np
 
-from blockage import broadphase, edges, traversal
-from blockage.parallel import map_rows
+from blockage import broadphase, traversal
+from blockage.feature_edges import FeatureEdgeQueries
+from blockage.query_plumbing import exclusions, ordered_query, to_local, to_world
 from blockage.sources import source_link
 from blockage.tolerance import TOL
 from blockage.validation import as_cutoff, as_faces, as_points, as_transform
 
 __all__ = ["Blocker", "Proximity"]
-
-_SORT_MIN = 2048
-"""Queries of at least this many points are sorted in Morton order first."""
-
 
 class Proximity(NamedTuple):
     """Nearest blocking face of each query point.
@@ -60,7 +57,7 @@ def _mesh_arrays(mesh, faces):
     return vertices, as_faces(faces, len(vertices), sizes=(3,), name="blocker faces")
 
 
-class Blocker:
+class Blocker(FeatureEdgeQueries):
     """Blocking triangle surface with a bounding-volume hierarchy built once.
 
     Parameters
@@ -161,19 +158,19 @@ class Blocker:
         points = as_points(points)
         cutoff = as_cutoff(cutoff)
         matrix = None if transform is None else as_transform(transform)
-        local = points if matrix is None else _to_local(points, matrix)
-        exclude = _exclusions(exclude_vertices, len(points), 1).ravel()
+        local = points if matrix is None else to_local(points, matrix)
+        exclude = exclusions(exclude_vertices, len(points), 1).ravel()
         n = len(points)
         if self._tree is None or n == 0:
             return Proximity(np.full(n, np.inf), np.full((n, 3), np.nan), np.full(n, -1, np.int64))
-        raw = _ordered_query(self._nearest_triangles((cutoff + self.margin) ** 2), local, exclude, 5)
+        raw = ordered_query(self._nearest_triangles((cutoff + self.margin) ** 2), local, exclude, 5)
         distances = np.sqrt(raw[:, 0])
         found = distances <= cutoff
         distances[~found] = np.inf
         closest = raw[:, 2:]
         closest[~found] = np.nan
         if matrix is not None:
-            closest = _to_world(closest, matrix)
+            closest = to_world(closest, matrix)
         faces = self._tree.order[np.where(found, raw[:, 1], 0).astype(np.int64)]
         faces[~found] = -1
         return Proximity(distances, closest, faces)
@@ -188,97 +185,3 @@ class Blocker:
                                                self._sorted_faces, self.margin)
 
         return run
-
-    @property
-    def feature_edges(self):
-        """(e, 2) int: boundary, non-manifold and sharp edges (computed once)."""
-        if self._edges is None:
-            self._edges = edges.feature_edges(self.vertices, self.faces)
-        return self._edges
-
-    def edge_distances(self, starts, ends, cutoff=np.inf, transform=None, exclude_vertices=None):
-        """Distance from each segment to the nearest feature edge, within a cutoff.
-
-        Parameters
-        ----------
-        starts, ends : (n, 3) float
-            Query segments [m] (world frame).
-        cutoff : float
-            Search radius [m]; farther segments get ``inf``.
-        transform : (4, 4) float, optional
-            Rigid transform placing the blocker in the world.
-        exclude_vertices : (n, 2) int, optional
-            Blocker vertex ids of the segment ends (self-contact, -1: none).
-
-        Returns
-        -------
-        distances : (n,) float
-            Exact segment-to-segment distance [m], ``inf`` beyond the cutoff.
-        """
-        starts, ends = as_points(starts, "starts"), as_points(ends, "ends")
-        if starts.shape != ends.shape:
-            raise ValueError(f"starts and ends must have the same shape, got {starts.shape} and {ends.shape}")
-        cutoff = as_cutoff(cutoff)
-        if transform is not None:
-            matrix = as_transform(transform)
-            starts, ends = _to_local(starts, matrix), _to_local(ends, matrix)
-        exclude = _exclusions(exclude_vertices, len(starts), 2)
-        if len(self.feature_edges) == 0 or len(starts) == 0:
-            return np.full(len(starts), np.inf)
-        tree, segs, seg_vertices = self._feature_edge_tree()
-        limit_sq = (cutoff + self.margin) ** 2
-
-        def run(queries, ids):
-            return traversal.nearest_segments(queries, ids, limit_sq, tree.boxes, tree.slots, tree.leaf_size,
-                                              segs, seg_vertices)
-
-        raw = _ordered_query(run, np.hstack([starts, ends]), exclude, 2, centers=0.5 * (starts + ends))
-        distances = np.sqrt(raw[:, 0])
-        distances[distances > cutoff] = np.inf
-        return distances
-
-    def _feature_edge_tree(self):
-        if self._edge_tree is None:
-            ends = self.vertices[self.feature_edges]
-            tree = broadphase.build_tree(ends.min(axis=1), ends.max(axis=1), self._leaf_size, self.margin)
-            segs = np.ascontiguousarray(ends[tree.order].reshape(-1, 6))
-            self._edge_tree = (tree, segs, np.ascontiguousarray(self.feature_edges[tree.order]))
-        return self._edge_tree
-
-
-def _ordered_query(run, queries, exclude, width, centers=None):
-    """``run(queries, exclude)`` in Morton order and in threads, rows returned in input order.
-
-    Queries of at least ``_SORT_MIN`` rows are sorted by the Morton code of
-    ``centers`` (default: the queries) so that neighbours share tree paths, then
-    split into one chunk per core (:func:`blockage.parallel.map_rows`).
-    """
-    n = len(queries)
-    if n < _SORT_MIN:
-        return run(np.ascontiguousarray(queries), np.ascontiguousarray(exclude))
-    order = np.argsort(broadphase.morton_codes(queries if centers is None else centers), kind="stable")
-    ordered, ids = np.ascontiguousarray(queries[order]), np.ascontiguousarray(exclude[order])
-    raw = np.empty((n, width))
-    raw[order] = np.concatenate(map_rows(lambda rows: run(ordered[rows], ids[rows]), n))
-    return raw
-
-
-def _exclusions(exclude, n, width):
-    """Exclusion ids as an (n, width) int64 array (-1 everywhere when None)."""
-    if exclude is None:
-        return np.full((n, width), -1, np.int64)
-    array = np.asarray(exclude, dtype=np.int64).reshape(-1, width) if np.size(exclude) else np.zeros((0, width),
-                                                                                                      np.int64)
-    if array.shape != (n, width):
-        raise ValueError(f"exclude_vertices must have {n} x {width} entries, got {np.shape(exclude)}")
-    return np.ascontiguousarray(array)
-
-
-def _to_local(points, matrix):
-    """Apply the inverse of a rigid transform: ``R^T (p - t)``."""
-    return np.ascontiguousarray((points - matrix[:3, 3]) @ matrix[:3, :3])
-
-
-def _to_world(points, matrix):
-    """Apply a rigid transform: ``R p + t``."""
-    return points @ matrix[:3, :3].T + matrix[:3, 3]
