@@ -98,20 +98,14 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
 
     Parameters
     ----------
-    p_up : float
-        Upstream (cavity) absolute pressure p_e [Pa].
-    T_up : float
-        Upstream temperature T_e [K].
+    p_up, T_up : float
+        Upstream (cavity) absolute pressure p_e [Pa] and temperature T_e [K].
     p_down : float
         Downstream absolute pressure [Pa].
-    R : float
-        Specific gas constant of the upstream gas [J/(kg K)].
-    gamma : float
-        Ratio of specific heats of the upstream gas at T_up [-].
-    area : float
-        Orifice area A [m^2], >= 0.
-    Cd : float
-        Discharge coefficient [-].
+    R, gamma : float
+        Specific gas constant [J/(kg K)] and ratio of specific heats at T_up [-] of the upstream gas.
+    area, Cd : float
+        Orifice area A [m^2] (>= 0) and discharge coefficient [-].
 
     Returns
     -------
@@ -121,11 +115,9 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
 
     Notes
     -----
-    The bracket is evaluated as q^(2/γ)·(1 − q^((γ−1)/γ)), which keeps full relative precision as q → 1. The exact
-    law behaves like sqrt(Δp) there, with an infinite slope; below a relative pressure difference of
-    :data:`LINEAR_BELOW` (1e-4) its square root is replaced by the quadratic a·s + b·s² (s = Δp/p_e) that matches
-    its value and slope at s = 1e-4, so the law is C¹ and linear in Δp at Δp → 0 (the flow there is laminar
-    anyway). Above that the law is exact.
+    The bracket is evaluated as q^(2/γ)·(1 − q^((γ−1)/γ)) (full precision as q → 1). Below Δp/p_e =
+    :data:`LINEAR_BELOW` its square root is the quadratic a·s + b·s² (s = Δp/p_e) matching its value and slope
+    there, so the law is C¹ and linear in Δp at Δp → 0; above, the law is exact.
 
     References
     ----------
@@ -135,16 +127,13 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
     --------
     Air at 2 bar, 300 K, into 1 bar (choked), 1 cm^2, Cd = 1:
 
-    >>> round(orifice_mass_flow(2.0e5, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4), 6)
-    0.046671
-    >>> orifice_mass_flow(1.0e5, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4)
-    0.0
+    >>> f = lambda p_up, p_down: orifice_mass_flow(p_up, 300.0, p_down, 287.0, 1.4, 1.0e-4)
+    >>> round(f(2.0e5, 1.0e5), 6), f(1.0e5, 1.0e5)
+    (0.046671, 0.0)
 
     Near Δp = 0 the flow is linear in Δp (C¹ join at Δp/p = 1e-4):
 
-    >>> a = orifice_mass_flow(1.0e5 + 0.01, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4)
-    >>> b = orifice_mass_flow(1.0e5 + 0.02, 300.0, 1.0e5, 287.0, 1.4, 1.0e-4)
-    >>> round(b / a, 3)
+    >>> round(f(1.0e5 + 0.02, 1.0e5) / f(1.0e5 + 0.01, 1.0e5), 3)
     1.999
     """
     if p_down >= p_up or area <= 0.0:
@@ -152,9 +141,8 @@ def orifice_mass_flow(p_up: float, T_up: float, p_down: float, R: float, gamma: 
     s = (p_up - p_down) / p_up
     if s >= LINEAR_BELOW:
         root = _root_bracket(max(p_down / p_up, critical_pressure_ratio(gamma)), gamma)
-    else:  # a s + b s^2 matching value and slope of the exact root at s = LINEAR_BELOW
-        d = LINEAR_BELOW
-        f, fp = _root_bracket(1.0 - d, gamma), _root_bracket_slope(d, gamma)
+    else:  # a s + b s^2 matching value and slope of the exact root at s = d = LINEAR_BELOW
+        d, f, fp = LINEAR_BELOW, _root_bracket(1.0 - LINEAR_BELOW, gamma), _root_bracket_slope(LINEAR_BELOW, gamma)
         root = s * ((2.0 * f - fp * d) / d + s * (fp * d - f) / (d * d))
     return Cd * area * p_up / math.sqrt(R * T_up) * math.sqrt(2.0 * gamma / (gamma - 1.0)) * root
 
