@@ -14,12 +14,13 @@ from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 from .jacobian import jacobian_option
+from .trajectory import Trajectory
 from .progress import ProgressBar
 
 __all__ = ["SolverOptions", "Trajectory", "SolverError", "integrate", "METHODS", "stiffness_advice"]
@@ -98,52 +99,6 @@ class SolverOptions:
             raise ValueError(f"rtol must be in (0, 1), got {self.rtol!r}")
         if not self.max_wall > 0:
             raise ValueError(f"max_wall must be > 0 [s], got {self.max_wall!r}")
-
-
-@dataclass
-class Trajectory:
-    """The solution as a chain of dense-output segments, with the solver's statistics and the event log."""
-
-    segments: list = field(default_factory=list)
-    modes: list = field(default_factory=list)  # the system's discrete state during each segment
-    step_times: list = field(default_factory=list)
-    events: list = field(default_factory=list)
-    stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
-                                                 "restarts": 0, "events": 0, "path": "python"})
-    last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
-    deadline: float = math.inf  # time.perf_counter() after which the run stops (SolverOptions.max_wall)
-    stalls: int = 0  # events in a row at the same time
-    path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
-    #: compiled path: (step records, segment table) of the compiled solver, read back by exchange.compiled_history
-    compiled_records: tuple | None = field(default=None, repr=False)
-
-    def __call__(self, t: float) -> np.ndarray:
-        """State at time t (right limit at a breakpoint)."""
-        return self.segments[int(self._index(t))](t)
-
-    def mode_at(self, t: float):
-        """The discrete state (``system.snapshot()``) in force at time t (right limit at a switch)."""
-        return self.modes[int(self._index(t))]
-
-    def _index(self, t):
-        """The segment holding t (a time or an array); the segments' starts are kept while none is added."""
-        if len(self.__dict__.get("_starts", ())) != len(self.segments):
-            self._starts = np.array([s.t_min for s in self.segments])
-        return np.clip(np.searchsorted(self._starts, t, side="right") - 1, 0, len(self.segments) - 1)
-
-    def sample(self, times) -> np.ndarray:
-        """States at ``times`` (sorted), shape (len(times), n)."""
-        times = np.asarray(times, dtype=float)
-        idx = self._index(times)
-        out = np.empty((times.size, self.segments[0](self.segments[0].t_min).size))
-        for i in np.unique(idx):
-            sel = idx == i
-            out[sel] = self.segments[i](times[sel]).T
-        return out
-
-    @property
-    def t_final(self) -> float:
-        return self.segments[-1].t_max
 
 
 def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progress: bool = False) -> Trajectory:

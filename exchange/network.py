@@ -20,21 +20,16 @@ import numpy as np
 from cavity.cavity import CavityState
 from .activation import activated_area
 from .equalised import EQUALISED_BELOW
-from .network_switches import NetworkSwitches, gas_point
-from .wall_heat import wall_heat_flows
+from .network_lowering import NetworkLowering
+from .network_rates import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, NetworkRates
+from .network_switches import NetworkSwitches
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
 
-LEDGER_PER_EXCHANGE = 2  # mass, energy
-LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
-
-
-
-
 
 @dataclass
-class Network(NetworkSwitches):
+class Network(NetworkRates, NetworkLowering, NetworkSwitches):
     """Cavities, exchanges and the environment of one scene.
 
     Attributes
@@ -150,17 +145,6 @@ class Network(NetworkSwitches):
         return activated_area(self.base_area(index, t), t, ex.activation, self.popped[index],
                               self.area_at_activation[index] or 0.0)
 
-    def exchange_flows(self, t: float, states: list) -> list:
-        """Signed mass flow [kg/s] and the GasPoint it carries, per exchange."""
-        points = [gas_point(s) for s in states]
-        flows = []
-        for j, ex in enumerate(self.exchanges):
-            a = points[ex.upstream]
-            b = self._ambient_point if ex.downstream is None else points[ex.downstream]
-            mdot = 0.0 if self.equalised[j] else ex.mass_flow(a, b, self.exchange_area(j, t), t)
-            flows.append((mdot, a if mdot >= 0.0 else b))
-        return flows
-
     def begin_segment(self, t0: float, t1: float, y0=None) -> None:
         """The integrator is about to integrate over [t0, t1] from y0; no breakpoint lies inside.
 
@@ -183,83 +167,9 @@ class Network(NetworkSwitches):
         end = self._segment_end
         return math.nextafter(end, -math.inf) if t >= end else t
 
-    def rhs(self, t: float, y) -> np.ndarray:
-        """d(unknowns)/dt at (t, y)."""
-        t = self.input_time(t)
-        states = self.last_states = self.states(t, y)
-        flows = self.exchange_flows(t, states)
-        if self._walls:  # real-gas cavities' walls
-            wall_heat_flows(self, t, states, flows)
-        dy = np.zeros_like(y)
-        for cav, k, s, c, fractions in zip(self.cavities, self.offsets, states, self._ledger,
-                                           self._inflow_fractions):
-            ns = len(cav.initial_masses)
-            for inf, y_in in zip(cav.inflators, fractions):
-                mdot = inf.mass_flow(t)
-                if mdot:
-                    hdot = mdot * inf.gas.enthalpy(inf.temperature(t)) / inf.gas.mass
-                    dy[k:k + ns] += mdot * y_in
-                    dy[c] += mdot
-                    dy[c + 1] += hdot
-                    if not cav.isothermal:
-                        dy[k + ns] += hdot
-            if not cav.isothermal:
-                extra = getattr(s, "extra_rates", None)
-                work = s.pressure * s.volume_rate
-                heat = cav.heat_loss(s.temperature) if extra is None else s.heat_out
-                dy[k + ns] -= work + heat
-                dy[c + 2] += work
-                dy[c + 3] += heat
-                if extra:  # a real-gas cavity's wall: temperature, heat to ambient
-                    dy[k + ns + 1:k + ns + 1 + len(extra)] = extra
-        for j, (ex, (mdot, carrier)) in enumerate(zip(self.exchanges, flows)):
-            if mdot == 0.0:
-                continue
-            edot = mdot * carrier.h
-            self._transfer(dy, ex.upstream, -mdot, -edot, carrier)
-            if ex.downstream is not None:
-                self._transfer(dy, ex.downstream, mdot, edot, carrier)
-            e = self.ledger_offset + LEDGER_PER_EXCHANGE * j
-            dy[e] += mdot
-            dy[e + 1] += edot
-        return dy
-
-    def _transfer(self, dy, i, mdot, edot, carrier):
-        k, cav = self.offsets[i], self.cavities[i]
-        ns = len(cav.initial_masses)
-        dy[k:k + ns] += mdot * carrier.mass_fractions
-        if not cav.isothermal:
-            dy[k + ns] += edot
-
-
-    # hooks used by cavity.integration.integrate
-    def compiled_solver(self):
-        """This network lowered to arrays for the compiled DOP853 path (:mod:`exchange.compiled`), or None when a
-        part of it is not supported there (then the integrator runs the Python path). Built once and kept."""
-        key = (type(self), self.gas, self.cavities, self.exchanges, self.ambient)
-        cached = self.__dict__.get("_compiled")
-        if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])):
-            from .compiled import lower
-
-            cached = key + (lower(self),)
-            self.__dict__["_compiled"] = cached
-        return cached[-1]
-
     def is_plain(self) -> bool:
         """True for a plain :class:`Network` (a subclass lowers itself only through ``lowered_geometry``)."""
         return type(self) is Network
-
-    def segment_rhs(self, t1: float):
-        """The right-hand side solve_ivp integrates over a segment ending at t1 (after :meth:`begin_segment`): the
-        compiled one when the network lowers (:meth:`compiled_solver`), else :meth:`rhs`."""
-        fast = self.compiled_solver()
-        return self.rhs if fast is None else fast.rhs_function(t1)
-
-    def compiled_unsupported(self) -> str | None:
-        """Why :meth:`compiled_solver` is None (None: it is supported)."""
-        from .compiled import unsupported_reason
-
-        return unsupported_reason(self)
 
     def describe(self, t: float, y) -> str:
         """A one-line account of the cavities' state, for error messages."""

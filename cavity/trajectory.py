@@ -1,0 +1,56 @@
+"""The solution of an integration: a chain of dense-output segments, the discrete state in force on each, the
+solver's statistics and the event log (what :func:`cavity.integration.integrate` returns)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Trajectory"]
+
+
+@dataclass
+class Trajectory:
+    """The solution as a chain of dense-output segments, with the solver's statistics and the event log."""
+
+    segments: list = field(default_factory=list)
+    modes: list = field(default_factory=list)  # the system's discrete state during each segment
+    step_times: list = field(default_factory=list)
+    events: list = field(default_factory=list)
+    stats: dict = field(default_factory=lambda: {"steps": 0, "rhs_calls": 0, "jacobians": 0, "lu_decompositions": 0,
+                                                 "restarts": 0, "events": 0, "path": "python"})
+    last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
+    deadline: float = math.inf  # time.perf_counter() after which the run stops (SolverOptions.max_wall)
+    stalls: int = 0  # events in a row at the same time
+    path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
+    #: compiled path: (step records, segment table) of the compiled solver, read back by exchange.compiled_history
+    compiled_records: tuple | None = field(default=None, repr=False)
+
+    def __call__(self, t: float) -> np.ndarray:
+        """State at time t (right limit at a breakpoint)."""
+        return self.segments[int(self._index(t))](t)
+
+    def mode_at(self, t: float):
+        """The discrete state (``system.snapshot()``) in force at time t (right limit at a switch)."""
+        return self.modes[int(self._index(t))]
+
+    def _index(self, t):
+        """The segment holding t (a time or an array); the segments' starts are kept while none is added."""
+        if len(self.__dict__.get("_starts", ())) != len(self.segments):
+            self._starts = np.array([s.t_min for s in self.segments])
+        return np.clip(np.searchsorted(self._starts, t, side="right") - 1, 0, len(self.segments) - 1)
+
+    def sample(self, times) -> np.ndarray:
+        """States at ``times`` (sorted), shape (len(times), n)."""
+        times = np.asarray(times, dtype=float)
+        idx = self._index(times)
+        out = np.empty((times.size, self.segments[0](self.segments[0].t_min).size))
+        for i in np.unique(idx):
+            sel = idx == i
+            out[sel] = self.segments[i](times[sel]).T
+        return out
+
+    @property
+    def t_final(self) -> float:
+        return self.segments[-1].t_max

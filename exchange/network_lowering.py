@@ -1,0 +1,34 @@
+"""How a cavity network reaches the compiled path: lowered once and kept, its compiled right-hand side for
+solve_ivp's other methods, and why it does not lower (a mixin of :class:`exchange.network.Network`)."""
+from __future__ import annotations
+
+__all__ = ["NetworkLowering"]
+
+
+class NetworkLowering:
+    """Hooks used by :func:`cavity.integration.integrate` (``compiled_solver``, ``segment_rhs``,
+    ``compiled_unsupported``); needs ``gas``, ``cavities``, ``exchanges``, ``ambient`` and ``rhs``."""
+
+    def compiled_solver(self):
+        """This network lowered to arrays for the compiled DOP853 path (:mod:`exchange.compiled`), or None when a
+        part of it is not supported there (then the integrator runs the Python path). Built once and kept."""
+        key = (type(self), self.gas, self.cavities, self.exchanges, self.ambient)
+        cached = self.__dict__.get("_compiled")
+        if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])):
+            from .compiled import lower
+
+            cached = key + (lower(self),)
+            self.__dict__["_compiled"] = cached
+        return cached[-1]
+
+    def segment_rhs(self, t1: float):
+        """The right-hand side solve_ivp integrates over a segment ending at t1 (after :meth:`begin_segment`): the
+        compiled one when the network lowers (:meth:`compiled_solver`), else :meth:`rhs`."""
+        fast = self.compiled_solver()
+        return self.rhs if fast is None else fast.rhs_function(t1)
+
+    def compiled_unsupported(self) -> str | None:
+        """Why :meth:`compiled_solver` is None (None: it is supported)."""
+        from .compiled import unsupported_reason
+
+        return unsupported_reason(self)
