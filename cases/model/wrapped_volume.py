@@ -132,18 +132,25 @@ def _rigid_key(body, T, grid, x0, faces) -> str:
 
 
 def _volumes_of_placements(placed, x0, faces, node_faces, v0) -> np.ndarray:
-    """V at every θ of ``placed`` (grid, n, 3) [m^3]: v0 plus the volume change of the faces holding a node that
-    moves anywhere on the grid (a face whose nodes stay put adds exactly 0), all θ in one contraction."""
-    moved = np.flatnonzero(np.any(placed != x0, axis=(0, 2)))
-    if not moved.size:
-        return np.full(len(placed), v0)
-    touched = np.unique(node_faces[moved])
+    """V at every θ of ``placed`` = (nodes, (grid, nodes, 3) positions) [m^3]: v0 plus the volume change of the
+    faces holding a node that moves anywhere on the grid (a face whose nodes stay put adds exactly 0), all θ in
+    one contraction over those faces' vertices only."""
+    nodes, positions = placed
+    moving = np.any(positions != x0[nodes], axis=(0, 2))
+    if not moving.any():
+        return np.full(len(positions), v0)
+    touched = np.unique(node_faces[nodes[moving]])
     touched = faces[touched[touched >= 0]]
-    return v0 + mesh_volumes(placed, touched) - mesh_volume(x0, touched)
+    used, local = np.unique(touched, return_inverse=True)
+    local = local.reshape(touched.shape)
+    x = np.broadcast_to(x0[used], (len(positions),) + (len(used), 3)).copy()
+    x[:, np.searchsorted(used, nodes[moving])] = positions[:, moving]
+    return v0 + mesh_volumes(x, local) - mesh_volume(x0, touched)
 
 
 def _rigid_placements(wrapper: Wrapper, grid, x0, T):
-    """Node positions of the wrapped mesh at every θ of ``grid`` in one tree query (one rigid body).
+    """Positions of the wrapped mesh's nodes the body can reach, at every θ of ``grid``, in one tree query (one
+    rigid body): (node ids, (grid, nodes, 3) positions [m]); every other node stays at x0.
 
     In the body's own frame the body is fixed and the nodes move: all (θ, node) pairs near the body are
     projected together, instead of one query per θ.
@@ -156,13 +163,12 @@ def _rigid_placements(wrapper: Wrapper, grid, x0, T):
     cand = np.flatnonzero(np.all((x0 >= lo) & (x0 <= hi), axis=1))  # nodes the swept body can reach
     local = np.einsum("gji,gnj->gni", T[:, :3, :3], x0[cand][None] - T[:, None, :3, 3])  # (grid, cand, 3)
     g_idx, c_idx = np.nonzero(np.sum((local - sphere.center) ** 2, axis=2) <= sphere.radius ** 2)
-    n_idx = cand[c_idx]
-    out = np.broadcast_to(x0, (len(grid),) + x0.shape).copy()
+    out = np.broadcast_to(x0[cand], (len(grid),) + (len(cand), 3)).copy()
     if g_idx.size:
         pts = local[g_idx, c_idx]
         prox = blocker.distances(pts, cutoff=2.0 * sphere.radius)
         inside = behind_closest_face(pts, prox.closest_points, body.mesh.face_normals[prox.faces])
-        g_in, n_in, cp = g_idx[inside], n_idx[inside], prox.closest_points[inside]
+        g_in, c_in, cp = g_idx[inside], c_idx[inside], prox.closest_points[inside]
         R, t = T[g_in, :3, :3], T[g_in, :3, 3]
-        out[g_in, n_in] = np.einsum("kij,kj->ki", R, cp) + t
-    return out
+        out[g_in, c_in] = np.einsum("kij,kj->ki", R, cp) + t
+    return cand, out
