@@ -56,6 +56,7 @@ class CaseCheck:
     passed: bool
     wall: float
     message: str = ""
+    path: str = ""  # the integrator that ran (summary.json's solver.path)
 
 
 def reference_path(name: str) -> Path:
@@ -86,19 +87,21 @@ def check_case(name: str, *, update: bool = False) -> CaseCheck:
     start = time.perf_counter()
     results = run_scene(HERE / CASES[name])
     wall = time.perf_counter() - start
+    path = results.summary["solver"]["path"]
     ref = reference_path(name)
     if update:
         write_history(ref, results.columns, results.history)
-        return CaseCheck(name, 0.0, "", True, wall, "reference written")
+        return CaseCheck(name, 0.0, "", True, wall, "reference written", path)
     if not ref.is_file():
-        return CaseCheck(name, np.inf, "", False, wall, f"no reference {ref.name}: run ventsim check --update")
+        return CaseCheck(name, np.inf, "", False, wall, f"no reference {ref.name}: run ventsim check --update", path)
     errors = column_errors(results.columns, results.history, *read_reference(ref))
     worst = max(errors, key=errors.get)
     if name in DECK_TWINS:
         twin = _deck_twin_error(name, results)
         if twin > TWIN_RTOL:
-            return CaseCheck(name, twin, "(deck vs twin)", False, wall, f"deck differs from its twin by {twin:.2e}")
-    return CaseCheck(name, float(errors[worst]), worst, errors[worst] <= RTOL, wall)
+            return CaseCheck(name, twin, "(deck vs twin)", False, wall, f"deck differs from its twin by {twin:.2e}",
+                             path)
+    return CaseCheck(name, float(errors[worst]), worst, errors[worst] <= RTOL, wall, path=path)
 
 
 def _deck_twin_error(name: str, twin_results) -> float:
@@ -119,10 +122,11 @@ def check_all(names=None, *, update: bool = False) -> list:
 
 
 def format_table(checks) -> str:
-    rows = [f"{'case':<26} {'status':<6} {'max error':>10} {'tolerance':>10} {'wall [s]':>9}  worst column"]
+    rows = [f"{'case':<26} {'status':<6} {'max error':>10} {'tolerance':>10} {'wall [s]':>9}  {'path':<9} "
+            f"worst column"]
     for c in checks:
         status = "PASS" if c.passed else "FAIL"
-        rows.append(f"{c.name:<26} {status:<6} {c.error:>10.2e} {RTOL:>10.0e} {c.wall:>9.3f}  "
+        rows.append(f"{c.name:<26} {status:<6} {c.error:>10.2e} {RTOL:>10.0e} {c.wall:>9.3f}  {c.path:<9} "
                     f"{c.worst_column}{(' ' + c.message) if c.message else ''}")
     n_fail = sum(not c.passed for c in checks)
     rows.append(f"{len(checks) - n_fail} passed, {n_fail} failed")
