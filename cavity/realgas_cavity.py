@@ -1,8 +1,9 @@
 """A cavity (a stored-gas tank, a test vessel) whose gas follows a real-gas equation of state.
 
 Unknowns: the species masses [kg] (one species carries the fluid), the internal energy U [J] and, with a wall,
-the wall temperature T_w [K] and the heat the wall gave to the ambient ∫Q_out dt [J] (a ledger entry: it closes
-the wall's books, m_w c_w (T_w − T_w0) = ∫Q_in − ∫Q_out, to round-off). The gas balance is the one of
+the wall temperatures T_1 … T_N [K] of its N layers (one when lumped, inner to outer) and the heat the wall gave
+to the ambient ∫Q_out dt [J] (a ledger entry: it closes the wall's books, Σ C_j (T_j − T_j0) = ∫Q_in − ∫Q_out,
+to round-off). The gas balance is the one of
 :mod:`cavity.cavity`:
 
     dU/dt = Σ ṁ_in h_in − Σ ṁ_out h_out − p dV/dt − Q,
@@ -58,20 +59,20 @@ class RealGasCavity(Cavity):
 
     @property
     def n_unknowns(self) -> int:
-        return len(self.initial_masses) + (3 if self.wall is not None else 1)
+        return len(self.initial_masses) + (2 + self.wall.layers if self.wall is not None else 1)
 
     @property
     def n_coupled(self) -> int:
-        """The leading unknowns the right-hand side depends on: masses, U and the wall temperature (not the
+        """The leading unknowns the right-hand side depends on: masses, U and the wall temperatures (not the
         heat to ambient, a ledger entry)."""
-        return len(self.initial_masses) + (2 if self.wall is not None else 1)
+        return len(self.initial_masses) + (1 + self.wall.layers if self.wall is not None else 1)
 
     def initial_unknowns(self, gas=None) -> np.ndarray:
         m = np.asarray(self.initial_masses, dtype=float)
         V = max(self.total_volume(0.0), self.minimum_volume)
         total = float(m.sum())
         U = total * self.fluid.at(total / V, self.initial_temperature).u
-        extra = [U] + ([self.wall.initial_temperature, 0.0] if self.wall is not None else [])
+        extra = [U] + ([self.wall.initial_temperature] * self.wall.layers + [0.0] if self.wall is not None else [])
         return np.append(m, extra)
 
     def state(self, t: float, unknowns, T_guess: float) -> "RealGasState":
@@ -93,6 +94,9 @@ class RealGasCavity(Cavity):
         s = RealGasState(masses, mix, T, V, rate, p, rho, pt[2] if pt is not None else 0.0, fluid)
         if self.wall is not None:  # its heat flows: wall_heat, called by the right-hand side only
             s.wall_temperature = float(unknowns[ns + 1])
+            s.outer_wall_temperature = float(unknowns[ns + self.wall.layers])
+            if self.wall.layers > 1:
+                s.wall_layers = tuple(unknowns[ns + 1:ns + 1 + self.wall.layers])
         else:
             s.heat_out = self.heat_loss(T)  # Cavity's h_c·A·(T − T_amb), 0 unless heat_loss
         return s
@@ -105,18 +109,23 @@ class RealGasCavity(Cavity):
 
     def wall_heat(self, s: "RealGasState", inflow: float) -> None:
         """Set the wall's heat flows of state ``s`` with ``inflow`` [kg/s] entering the cavity: ``s.heat_out``
-        (gas → wall [W]) and ``s.extra_rates`` (dT_w/dt [K/s], wall → ambient [W])."""
-        q_in, q_out = self.wall.heat_flows(self.fluid, s.pressure, s.temperature, s.wall_temperature, inflow) \
-            if s.mixture.mass > 0.0 else (0.0, 0.0)
-        s.heat_out, s.extra_rates = q_in, ((q_in - q_out) / self.wall.thermal_mass, q_out)
+        (gas → wall [W]) and ``s.extra_rates`` (dT_j/dt of the layers [K/s], wall → ambient [W])."""
+        wall = self.wall
+        q_in, q_out = wall.heat_flows(self.fluid, s.pressure, s.temperature, s.wall_temperature, inflow,
+                                      s.outer_wall_temperature) if s.mixture.mass > 0.0 else (0.0, 0.0)
+        if wall.layers == 1:
+            s.heat_out, s.extra_rates = q_in, ((q_in - q_out) / wall.thermal_mass, q_out)
+        else:
+            s.heat_out, s.extra_rates = q_in, wall.layer_rates(s.wall_layers, q_in, q_out) + (q_out,)
 
 
 @dataclass(slots=True)
 class RealGasState:
     """The state of a real-gas cavity at one instant.
 
-    ``heat_out``: heat leaving the gas [W]; ``extra_rates``: d/dt of the unknowns after U (wall temperature
-    [K/s], heat to ambient [W]); ``wall_temperature`` [K] (NaN without a wall)."""
+    ``heat_out``: heat leaving the gas [W]; ``extra_rates``: d/dt of the unknowns after U (wall temperatures
+    [K/s], heat to ambient [W]); ``wall_temperature``, ``outer_wall_temperature`` [K]: the inner and outer
+    layers' (the same when lumped; NaN without a wall); ``wall_layers``: every layer's [K]."""
 
     masses: np.ndarray
     mixture: _RealMixture
@@ -130,3 +139,5 @@ class RealGasState:
     heat_out: float = 0.0
     extra_rates: tuple = ()
     wall_temperature: float = math.nan
+    outer_wall_temperature: float = math.nan
+    wall_layers: tuple = ()

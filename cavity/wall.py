@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .wall_layers import layer_capacities, layer_conductances, layer_temperature_rates, surface_conductance
+
 __all__ = ["Wall", "natural_convection_nusselt", "horizontal_cylinder_nusselt", "forced_inflow_nusselt", "rayleigh_number",
            "natural_convection_coefficient", "GRAVITY", "MORGAN_HORIZONTAL_CYLINDER"]
 
@@ -199,6 +201,11 @@ class Wall:
         :func:`natural_convection_coefficient`).
     jet_diameter : float
         d [m] of the forced term while gas flows in (0: none).
+    layers : int
+        N >= 1: 1 is lumped (one temperature, no conduction resistance); more conduct through the thickness
+        (:mod:`cavity.wall_layers`), the first layer facing the gas, the last the ambient.
+    conductivity, thickness : float
+        k [W/(m K)] and L [m] of a layered wall (> 0 when ``layers`` > 1).
     """
 
     mass: float
@@ -212,19 +219,44 @@ class Wall:
     ambient_temperature: float
     orientation: str = "vertical"
     jet_diameter: float = 0.0
+    layers: int = 1
+    conductivity: float = 0.0
+    thickness: float = 0.0
+
+    def __post_init__(self):
+        if self.layers < 1 or (self.layers > 1 and not (self.conductivity > 0.0 and self.thickness > 0.0)):
+            raise ValueError(f"a wall of {self.layers} layers needs layers >= 1, and conductivity > 0 and "
+                             f"thickness > 0 when layered (got {self.conductivity!r}, {self.thickness!r})")
+        half = 0.5 * self.thickness / self.layers if self.layers > 1 else 0.0
+        object.__setattr__(self, "_layering", (
+            layer_capacities(self.thermal_mass, self.inner_area, self.outer_area, self.layers),
+            layer_conductances(self.conductivity, self.thickness, self.inner_area, self.outer_area, self.layers),
+            surface_conductance(self.outer_h, self.outer_area, self.conductivity, half), half))
 
     @property
     def thermal_mass(self) -> float:
         """m_w·c_w [J/K]."""
         return self.mass * self.heat_capacity
 
-    def heat_flows(self, fluid, p: float, T_gas: float, T_wall: float, inflow: float = 0.0) -> tuple:
-        """(Q_in gas → wall, Q_out wall → ambient) [W] with ``inflow`` [kg/s] entering the cavity;
+    @property
+    def capacities(self) -> tuple:
+        """Heat capacity of each layer, inner to outer [J/K] (they sum to :attr:`thermal_mass`)."""
+        return self._layering[0]
+
+    def heat_flows(self, fluid, p: float, T_gas: float, T_wall: float, inflow: float = 0.0,
+                   T_outer: float | None = None) -> tuple:
+        """(Q_in gas → wall, Q_out wall → ambient) [W] with ``inflow`` [kg/s] entering the cavity, T_wall the
+        inner layer's temperature and T_outer the outer layer's (default: T_wall) [K];
         ``fluid.film_properties(p, T)`` gives the gas properties for the correlation."""
         h_i = self.inner_h
         if not h_i and T_gas != T_wall:
             h_i = natural_convection_coefficient(self.length, T_gas, T_wall,
                                                  fluid.film_properties(p, 0.5 * (T_gas + T_wall)), self.orientation,
                                                  inflow, self.jet_diameter)
-        return h_i * self.inner_area * (T_gas - T_wall), self.outer_h * self.outer_area * (T_wall -
-                                                                                           self.ambient_temperature)
+        g_in = surface_conductance(h_i, self.inner_area, self.conductivity, self._layering[3])
+        outer = T_wall if T_outer is None else T_outer
+        return g_in * (T_gas - T_wall), self._layering[2] * (outer - self.ambient_temperature)
+
+    def layer_rates(self, temperatures, q_in: float, q_out: float) -> tuple:
+        """dT_j/dt of the layers [K/s] (:func:`cavity.wall_layers.layer_temperature_rates`)."""
+        return layer_temperature_rates(temperatures, q_in, q_out, self._layering[0], self._layering[1])

@@ -314,8 +314,10 @@ def _scales(network: Network, t_end: float) -> np.ndarray:
         scale[k:k + ns] = m
         if not cav.isothermal:
             scale[k + ns] = e
-        if getattr(cav, "wall", None) is not None:  # real gas with a wall: wall temperature, heat to ambient
-            scale[k + ns + 1:k + ns + 3] = (cav.wall.initial_temperature, e)
+        wall = getattr(cav, "wall", None)
+        if wall is not None:  # real gas with a wall: its layers' temperatures, heat to ambient
+            scale[k + ns + 1:k + ns + 1 + wall.layers] = wall.initial_temperature
+            scale[k + ns + 1 + wall.layers] = e
         mass_scales.append(m)
         energy_scales.append(e)
     if getattr(network, "body", None) is not None:

@@ -38,7 +38,8 @@ def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> R
     if c.energy == "wall":
         wall = Wall(c.wall_mass, c.wall_heat_capacity, c.wall_inner_area, c.wall_outer_area or c.wall_inner_area,
                     c.wall_inner_h, c.wall_outer_h, c.wall_length, c.wall_temperature or c.temperature,
-                    scene.ambient.temperature, c.wall_orientation, c.wall_jet_diameter)
+                    scene.ambient.temperature, c.wall_orientation, c.wall_jet_diameter, c.wall_layers,
+                    c.wall_conductivity, c.wall_thickness)
     return RealGasCavity(c.name, volume, tuple(masses), c.temperature, c.energy, c.added_volume, c.minimum_volume,
                          c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, inflators,
                          fluid=fluid, species_index=k, wall=wall)

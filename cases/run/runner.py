@@ -53,6 +53,7 @@ def history_columns(model: Model) -> list:
     for e in model.network.exchanges:
         cols += [f"{e.name}.mass_flow [kg/s]", f"{e.name}.area [m^2]"]
     cols += [f"{c.name}.wall_temperature [K]" for c in model.network.cavities if getattr(c, "wall", None)]
+    cols += [f"{c.name}.outer_wall_temperature [K]" for c in model.network.cavities if _layered(c)]
     return cols + contact_columns(model)
 
 
@@ -67,7 +68,13 @@ def quantities(model: Model, t: float, y, mode=None) -> list:
     for j, (mdot, _) in enumerate(net.exchange_flows(t, states)):
         row += [mdot, net.exchange_area(j, t)]
     row += [s.wall_temperature for c, s in zip(net.cavities, states) if getattr(c, "wall", None)]
+    row += [s.outer_wall_temperature for c, s in zip(net.cavities, states) if _layered(c)]
     return row + contact_row(model, t, y)
+
+
+def _layered(cavity) -> bool:
+    """A real-gas cavity whose wall conducts in layers (its outer layer's temperature is a column too)."""
+    return getattr(getattr(cavity, "wall", None), "layers", 1) > 1
 
 
 def pressure_at(model: Model, traj: Trajectory, i: int, t: float) -> float:

@@ -162,6 +162,12 @@ class CavitySpec:
                                    "term 0.56·Re^0.67 added to the inner Nusselt number while gas flows in "
                                    "(HydDown's filling correlation, d = the vessel diameter); 0: none", "m",
                                    default=0.0, check="nonnegative")
+    wall_layers: int = key("wall: layers through the thickness; 1: lumped (one temperature); more: 1-D conduction "
+                           "with wall_conductivity and wall_thickness (docs/realgas.md)", default=1,
+                           bounds=(1, 200))
+    wall_conductivity: float = key("wall: thermal conductivity of the wall material (wall_layers > 1)", "W/(m K)",
+                                   default=0.0, check="nonnegative")
+    wall_thickness: float = key("wall: thickness (wall_layers > 1)", "m", default=0.0, check="nonnegative")
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -50,6 +50,10 @@ def check_real_gas(scene) -> None:
             if missing or not (c.wall_inner_h or c.wall_length):
                 raise SceneError(scene.path, f"{where}.{(missing or ['wall_length'])[0]}",
                                  "required (> 0) for energy = 'wall' (wall_length unless wall_inner_h is given)")
+            for k in ("wall_conductivity", "wall_thickness"):
+                if c.wall_layers > 1 and not getattr(c, k):
+                    raise SceneError(scene.path, f"{where}.{k}", f"required (> 0) with wall_layers = {c.wall_layers} "
+                                     "(1-D conduction through the wall); or set wall_layers = 1 (lumped)")
         for j, inf in enumerate(c.inflator):
             if _species(inf.gas) != {species[0]}:
                 raise SceneError(scene.path, f"{where}.inflator[{j}].gas", f"a real_gas cavity takes only its own "
