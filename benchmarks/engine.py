@@ -6,7 +6,11 @@ best of ``--repeat`` after a warm-up that pays for numba's loading. The error co
 relative difference from the Python run over every history column (scaled by the column's peak), so the ratio is
 at equal results. Cases that do not lower run on the Python path only ("python" in the path column, no ratio).
 
-Run: python benchmarks/engine.py [--repeat 5] [--cases airbag_impactor airbag_impactor_dynamic]
+``--ladder``: wall time against error instead, per case and per path, on the rtol ladder 1e-4 … 1e-10; the
+error is the largest relative difference (as above) from a reference run at rtol 1e-12 (compiled where the case
+lowers), each time the fastest of ``--repeat`` runs.
+
+Run: python benchmarks/engine.py [--repeat 5] [--cases airbag_impactor airbag_impactor_dynamic] [--ladder]
 """
 import argparse
 import time
@@ -41,11 +45,36 @@ def difference(a, b) -> float:
     return worst
 
 
+LADDER = (1e-4, 1e-6, 1e-8, 1e-10)
+
+
+def ladder(names, repeat: int) -> None:
+    """Wall time [s] and error against an rtol-1e-12 reference, per case, rtol and path."""
+    print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'error':>9} {'python [s]':>11} {'error':>9} {'ratio':>7}")
+    for name in names:
+        model = build_model(load_scene(HERE / CASES[name]))
+        lowers = model.network.compiled_solver() is not None and model.options.method == "DOP853"
+        at = lambda rtol: replace(model, options=replace(model.options, rtol=rtol))  # noqa: E731
+        reference = run(replace(at(1e-12), options=replace(at(1e-12).options, compiled=lowers))).history
+        for rtol in LADDER:
+            slow, res = best(at(rtol), False, repeat)
+            cells = ["-", "-"]
+            if lowers:
+                fast, fres = best(at(rtol), True, repeat)
+                cells = [f"{fast:.4f}", f"{difference(fres.history, reference):.1e}"]
+            ratio = f"{slow / fast:>6.1f}x" if lowers else "-"
+            print(f"{name:<26} {rtol:>7.0e} {cells[0]:>12} {cells[1]:>9} {slow:>11.4f} "
+                  f"{difference(res.history, reference):>9.1e} {ratio:>7}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--cases", nargs="+", default=list(CASES))
+    ap.add_argument("--ladder", action="store_true", help="wall time against error on the rtol ladder")
     args = ap.parse_args()
+    if args.ladder:
+        return ladder(args.cases, args.repeat)
     print(f"{'case':<26} {'rtol':>7} {'path':>9} {'compiled [s]':>12} {'python [s]':>11} {'ratio':>7} "
           f"{'RHS calls':>10} {'difference':>10}")
     for name in args.cases:

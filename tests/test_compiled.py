@@ -197,8 +197,9 @@ def assert_same_history(model, traj, times=None):
     got, want = cavity_summary(model, traj, y1, readback), cavity_summary(model, traj, y1)
     for cav in want:
         for key, value in want[cav].items():
-            # the time of a flat maximum moves as √(pressure round-off / curvature): 1e-9 of it
-            rel = 1e-9 if key == "peak pressure time [s]" else 1e-12
+            # the time of a flat maximum moves as √(2 ε p / |p''|): for airbag_impactor's peak (p 2.6e5 Pa,
+            # p'' ≈ -8e8 Pa/s², at 35 ms) that is 4e-10 s, 1.1e-8 of the time (5e-10 s seen); 1e-7 leaves 9x
+            rel = 1e-7 if key == "peak pressure time [s]" else 1e-12
             assert got[cav][key] == pytest.approx(value, rel=rel, abs=1e-300), (cav, key)
     return fast
 

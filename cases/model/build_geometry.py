@@ -125,7 +125,8 @@ def build_wrapped_volume(scene, i, mesh, driver: Driver):
     c = scene.cavity[i]
     wrapper = driver.wrapper(c.wrapped_by)
     if driver.dynamic is None:
-        return wrapped_volume(mesh, wrapper, driver.lo, driver.hi, lambda t: t, lambda t: 1.0, driver.breakpoints)
+        return wrapped_volume(mesh, wrapper, driver.lo, driver.hi, lambda t: t, lambda t: 1.0, driver.breakpoints,
+                              knots_in_time=True)
     if driver.dynamic.name not in c.wrapped_by:
         raise SceneError(scene.path, f"cavity[{i}].wrapped_by", "with a dynamic body, it must be among wrapped_by")
     st = driver.state
