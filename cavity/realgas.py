@@ -24,7 +24,8 @@ from __future__ import annotations
 import math
 from functools import partial
 
-from .realgas_mixture import IdealHeatCapacitySlope, MixtureTransport, density_at_pressure, heos_state, is_mixture, mixture_jet
+from .realgas_mixture import (IdealHeatCapacitySlope, MixtureTransport, density_at_pressure, entropy_correction,
+                              heos_state, is_mixture, mixture_jet)
 
 __all__ = ["RealFluid", "IdealGasFluid", "FluidPoint", "temperature_from_energy", "isentrope_temperature", "IDEAL_LIMIT_DENSITY",
            "shifted", "TAYLOR_BELOW",
@@ -88,9 +89,11 @@ class RealFluid:
         self.molar_mass = self._state.molar_mass()
         self.mixture = is_mixture(coolprop_name)
         if self.mixture:  # cavity.realgas_mixture: the c derivatives CoolProp refuses for a mixture
-            R = self._state.gas_constant() / self.molar_mass
             self._jet_of = partial(mixture_jet, IdealHeatCapacitySlope(coolprop_name.split("&"),
-                                                                       self._state.get_mole_fractions(), R))
+                                                                       self._state.get_mole_fractions(),
+                                                                       self.molar_mass))
+            self.entropy_correction = entropy_correction(self._state)
+            self.at = self._mixture_at
             self._film_rho, self._transport = None, MixtureTransport(coolprop_name.split("&"),
                                                                      self._state.get_mole_fractions())
         self.offset = 0.0
@@ -115,6 +118,15 @@ class RealFluid:
             raise RealGasSolveError(f"{self.name} at rho = {rho!r} kg/m^3, T = {T!r} K is two-phase: a real-gas "
                                     "cavity holds a single-phase fluid") from None
         return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
+
+    def _mixture_at(self, rho: float, T: float) -> FluidPoint:
+        """:meth:`at` of a mixture: no two-phase test (its phase is imposed as gas), and the entropy made
+        consistent with p and u (:func:`cavity.realgas_mixture.entropy_correction`)."""
+        st = self._state
+        st.update(self._DT, rho, T)
+        off = self.offset
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off,
+                           st.smass() + self.entropy_correction * math.log(rho), st.speed_sound(), st.cvmass()))
 
     def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
         """:meth:`at` and the partial derivatives of its fields: ``(point, d/dT at fixed ρ, d/dρ at fixed T or
@@ -195,8 +207,10 @@ class MetastableFluid:
             raise RealGasSolveError(f"{self.name}: the expansion to the throat reaches rho = {rho!r} kg/m^3, T = {T!r} K "
                                     f"where the equation of state fails ({exc}): flashing (two-phase) orifice flow "
                                     "is not modelled") from None
-        off = self._fluid.offset
-        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
+        off, s = self._fluid.offset, st.smass()
+        if self._fluid.mixture:
+            s += self._fluid.entropy_correction * math.log(rho)
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, s, c, st.cvmass()))
 
 
 def _derivative_keys(CP) -> tuple:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["heos_state", "is_mixture", "IdealHeatCapacitySlope", "MixtureTransport", "mixture_jet", "density_at_pressure",
+__all__ = ["heos_state", "is_mixture", "IdealHeatCapacitySlope", "MixtureTransport", "entropy_correction", "mixture_jet", "density_at_pressure",
            "check_single_phase", "SLOPE_NODE_SPACING"]
 
 #: Spacing [K] of the temperature nodes at which the components' cv0'(T) is evaluated (linear between).
@@ -51,27 +51,27 @@ def heos_state(coolprop_name: str, mass_fractions=None, gas_phase: bool = False)
 class IdealHeatCapacitySlope:
     r"""d cv0/dT [J/(kg K²)] of a mixture's ideal-gas part, from its components.
 
-    .. math:: \frac{dc_{v0}}{dT} = \sum_i x_i\,\frac{R\,\tau_i^2}{T}\left(2\alpha^0_{i,\tau\tau}
+    .. math:: \frac{dc_{v0}}{dT} = \frac{1}{M}\sum_i x_i\,\frac{R_i\,\tau_i^2}{T}\left(2\alpha^0_{i,\tau\tau}
               + \tau_i\,\alpha^0_{i,\tau\tau\tau}\right),\quad \tau_i = T_{r,i}/T
 
-    (R [J/(kg K)]: the mixture's, as CoolProp forms its cv; c_v0,i = −R τ_i² α⁰_i,ττ; the mixture's ideal part is
-    Σ x_i α⁰_i). Evaluated exactly at nodes
-    :data:`SLOPE_NODE_SPACING` apart, filled as they are first needed, and linear between: cv0' only enters
-    the derivatives of c (Newton slopes and the 1e-7 Taylor steps), where its interpolation error, below 1e-5
+    (M the mixture's molar mass, R_i [J/(mol K)] the gas constant of component i's equation of state, as CoolProp
+    forms a mixture's cv0 = Σ x_i c̃_v0,i/M, c̃_v0,i = −R_i τ_i² α⁰_i,ττ; they differ from each other by up to 6e-6).
+    Evaluated exactly at nodes :data:`SLOPE_NODE_SPACING` apart, filled as they are first needed, and linear
+    between: cv0' only enters the derivatives of c (Newton slopes and the 1e-7 Taylor steps), where its interpolation error, below 1e-5
     relative, moves c by less than 1e-13 relative.
 
     Examples
     --------
-    >>> slope = IdealHeatCapacitySlope(("Nitrogen", "Argon"), (0.8, 0.2), 8.314462618 / 0.0304)
-    >>> round(slope(300.0) * 1e3, 2)  # Ar contributes nothing: N2's vibration, 0.8·R/M·1.0e-4 /K
-    1.86
+    >>> slope = IdealHeatCapacitySlope(("Nitrogen", "Argon"), (0.8, 0.2), 0.0304)
+    >>> round(slope(300.0) * 1e3, 2)  # N2's 4.9e-4 J/(mol K²) (vibration) · 0.8 / M; Ar's cv0 is constant
+    12.81
     """
 
-    def __init__(self, components, mole_fractions, gas_constant: float):
+    def __init__(self, components, mole_fractions, molar_mass: float):
         import CoolProp.CoolProp as CP
 
         self._pure = [CP.AbstractState("HEOS", name) for name in components]
-        self._xR = tuple(x * gas_constant for x in mole_fractions)
+        self._xR = tuple(x * st.gas_constant() / molar_mass for x, st in zip(mole_fractions, self._pure))
         self._DT = CP.DmolarT_INPUTS
         self._nodes = {}
 
@@ -124,6 +124,31 @@ class MixtureTransport:
             log_mu += x * math.log(st.viscosity())
             k += x * st.conductivity()
         return math.exp(log_mu), k
+
+
+def entropy_correction(st) -> float:
+    r"""C [J/(kg K)] such that s = ``smass()`` + C·ln ρ is the entropy of the CoolProp HEOS mixture state ``st``
+    consistent with its own u, p and analytic derivatives (T ds = du − p dρ/ρ², ∂s/∂ρ|T = −∂p/∂T|ρ/ρ²).
+
+    .. math:: C = \frac{\sum_i x_i R_i - R}{M}
+
+    CoolProp's ``smass()`` of a mixture carries the ideal-gas term −R_i ln δ of each component with that
+    component's own gas constant R_i (8.31451 J/(mol K) for N2, Ar, CO2), while its pressure, energy and every
+    derivative use the mixture's R (8.314462618 J/(mol K)): the value's ρ-derivative differs from the analytic one
+    by (Σ x_i R_i − R)/(Mρ), 5.7e-6 of the ideal term, enough to break an isentropic expansion's entropy balance
+    at 1e-6. With C the two agree to the differences' own round-off (``tests/realgas/test_realgas_mixture.py``).
+
+    Examples
+    --------
+    >>> st = heos_state("Nitrogen&Argon", (0.7372, 0.2628))
+    >>> round(entropy_correction(st) * 1e3, 3)
+    1.558
+    """
+    import CoolProp.CoolProp as CP
+
+    R_bar = sum(x * CP.AbstractState("HEOS", name).gas_constant()
+                for name, x in zip(st.fluid_names(), st.get_mole_fractions()))
+    return (R_bar - st.gas_constant()) / st.molar_mass()
 
 
 def mixture_jet(slope, st, pt, rho: float, T: float, keys, density_too: bool) -> tuple:
