@@ -88,7 +88,12 @@ class RealFluid:
         self._jet_of = _jet
         self.molar_mass = self._state.molar_mass()
         self.mixture = is_mixture(coolprop_name)
-        if self.mixture:  # cavity.realgas_mixture: the c derivatives CoolProp refuses for a mixture
+        #: [K] below which a state of a mixture is cautioned (the highest critical temperature of its components;
+        #: 0 for a pure fluid, whose two-phase states :meth:`at` refuses).
+        self.caution_below, self.caution_component = 0.0, ""
+        if self.mixture:
+            self.caution_below, self.caution_component = max(
+                (CP.PropsSI("Tcrit", name), name) for name in coolprop_name.split("&"))  # cavity.realgas_mixture: the c derivatives CoolProp refuses for a mixture
             self._jet_of = partial(mixture_jet, IdealHeatCapacitySlope(coolprop_name.split("&"),
                                                                        self._state.get_mole_fractions(),
                                                                        self.molar_mass))
