@@ -169,17 +169,21 @@ def _run(tmp_path, body, end=0.01, rtol=1e-11, gas="{N2 = 0.8, Ar = 0.2}"):
 
 @pytest.mark.parametrize("gas", ["{N2 = 0.8, Ar = 0.2}", "{He = 0.5, Ar = 0.5}"])
 def test_isentropic_expansion_conserves_entropy(tmp_path, gas):
-    """A mixture at 300 bar in a cylinder whose volume triples (dU = −p dV, adiabatic): the entropy at the end
-    equals the initial one, |Δs|/cv <= 1e-8."""
-    (tmp_path / "v.csv").write_text("time [s],volume [m^3]\n0,0.01\n0.01,0.03\n")
+    """A mixture at 300 bar in a cylinder whose volume doubles (dU = −p dV, adiabatic; it stays above its
+    components' critical temperatures): the entropy at the end equals the initial one, |Δs|/cv <= 1e-8 (measured
+    ~2e-13; CoolProp's uncorrected smass() would give ~1e-6, cavity.realgas_mixture.entropy_correction)."""
+    (tmp_path / "v.csv").write_text("time [s],volume [m^3]\n0,0.01\n0.01,0.02\n")
     r = _run(tmp_path, 'volume_table = "v.csv"', gas=gas)
     cav = r.model.network.cavities[0]
     f = cav.fluid
     assert f.mixture
     s0 = f.at(sum(cav.initial_masses) / 0.01, 300.0)
     T1, m1, V1 = r.column("vessel.temperature")[-1], r.column("vessel.mass")[-1], r.column("vessel.volume")[-1]
-    assert V1 == pytest.approx(0.03) and T1 < 240.0
-    assert abs(f.at(m1 / V1, T1).s - s0.s) / s0.cv <= 1e-8
+    assert V1 == pytest.approx(0.02) and f.caution_below < T1 < 250.0
+    s1 = f.at(m1 / V1, T1).s
+    assert abs(s1 - s0.s) / s0.cv <= 1e-8
+    raw = f.entropy_correction * math.log(0.5) / s0.cv  # the drift of CoolProp's smass() alone
+    assert abs(raw) > 1e-7
 
 
 WALL = """volume = 0.05
