@@ -1,6 +1,8 @@
 """Scene checks of real-gas cavities and vessel walls (docs/realgas.md)."""
 from __future__ import annotations
 
+import functools
+
 from cavity.realgas_cavity import REAL_GAS_ENERGY_MODELS
 from cavity.species import BUILTIN_COOLPROP_NAMES
 
@@ -26,6 +28,7 @@ def _species(gas: dict) -> set:
     return {k for k, v in gas.items() if v > 0}
 
 
+@functools.lru_cache(maxsize=1)
 def _coolprop_fluids() -> tuple:
     """CoolProp's fluid names and their aliases."""
     import CoolProp.CoolProp as CP

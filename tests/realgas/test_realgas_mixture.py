@@ -242,6 +242,20 @@ def test_bad_mixtures_are_one_line(tmp_path, old, new, where, what):
     assert where in msg and what in msg and "s.toml" in msg and "\n" not in msg
 
 
+def test_a_binary_pair_coolprop_lacks_is_one_line(tmp_path):
+    """R134a/He has no mixture parameters in CoolProp: a one-line SceneError at build, naming the key."""
+    from cases.model.build import build_model
+    from cases.scene.errors import SceneError
+    from cases.scene.files import load_scene
+
+    text = SCENE.format(end=1.0, rtol=1e-8, gas="{He = 0.9, R134a = 0.1}", body="volume = 0.01")
+    text = text.replace("[ambient]", '[[species]]\nname = "R134a"\ncoolprop = "R134a"\n[ambient]')
+    (tmp_path / "s.toml").write_text(text.replace("pressure = 300.0e5", "pressure = 10.0e5"))
+    with pytest.raises(SceneError, match=r"s\.toml: cavity\[0\]\.gas: CoolProp: .*binary pair") as exc:
+        build_model(load_scene(tmp_path / "s.toml"))
+    assert "\n" not in str(exc.value)
+
+
 def test_inflow_of_another_composition_is_refused(tmp_path):
     from cases.scene.errors import SceneError
     from cases.scene.files import load_scene
