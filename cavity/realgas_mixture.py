@@ -110,10 +110,10 @@ class MixtureTransport:
     """
 
     def __init__(self, components, mole_fractions):
-        self._pure = [heos_state(name, gas_phase=True) for name in components]
-        self._x = tuple(mole_fractions)
         import CoolProp.CoolProp as CP
 
+        self._pure = [heos_state(name, gas_phase=True) for name in components]
+        self._x = tuple(mole_fractions)
         self._DT = CP.DmolarT_INPUTS
 
     def __call__(self, rho_molar: float, T: float) -> tuple:
@@ -196,17 +196,17 @@ def density_at_pressure(st, p: float, T: float, rho: float) -> float:
         if abs(step) <= 1e-13 * rho:
             return rho
         rho = rho_n
-    raise ArithmeticError(f"{st.name()}: no density for p = {p!r} Pa at T = {T!r} K")
+    raise ArithmeticError(f"{'&'.join(st.fluid_names())}: no density for p = {p!r} Pa at T = {T!r} K")
 
 
 def check_single_phase(coolprop_name: str, mass_fractions, rho: float, T: float) -> None:
-    """Raise ValueError if the mixture at (ρ, T) is not a single-phase gas or supercritical fluid by CoolProp's
-    own phase determination (a stability analysis, ~10 ms: for initial states only)."""
+    """Raise ValueError if the mixture at (ρ, T) is two-phase by CoolProp's own phase determination (a stability
+    analysis, 13–15 ms: for initial states only)."""
     import CoolProp.CoolProp as CP
 
     st = CP.AbstractState("HEOS", coolprop_name)
     st.set_mass_fractions(list(mass_fractions))
     st.update(CP.DmassT_INPUTS, rho, T)
-    if st.phase() not in (CP.iphase_gas, CP.iphase_supercritical, CP.iphase_supercritical_gas):
-        raise ValueError(f"{coolprop_name} at rho = {rho:.6g} kg/m^3, T = {T:.6g} K is not a single-phase gas "
-                         f"(CoolProp phase {st.phase()}): a real-gas cavity holds a gas")
+    if st.phase() == CP.iphase_twophase:
+        raise ValueError(f"{coolprop_name} at rho = {rho:.6g} kg/m^3, T = {T:.6g} K is two-phase: a real-gas cavity "
+                         "holds a single-phase fluid")

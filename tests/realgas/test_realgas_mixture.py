@@ -256,6 +256,20 @@ def test_a_binary_pair_coolprop_lacks_is_one_line(tmp_path):
     assert "\n" not in str(exc.value)
 
 
+def test_a_two_phase_initial_state_is_one_line(tmp_path):
+    """N2/CO2 0.5/0.5 at 40 bar, 240 K is two-phase by CoolProp's stability analysis: a one-line SceneError."""
+    from cases.model.build import build_model
+    from cases.scene.errors import SceneError
+    from cases.scene.files import load_scene
+
+    text = SCENE.format(end=1.0, rtol=1e-8, gas="{N2 = 0.5, CO2 = 0.5}", body="volume = 0.01")
+    text = text.replace("pressure = 300.0e5\ntemperature = 300.0", "pressure = 40.0e5\ntemperature = 240.0")
+    (tmp_path / "s.toml").write_text(text)
+    with pytest.raises(SceneError, match=r"cavity\[0\]\.gas: CoolProp: .*two-phase") as exc:
+        build_model(load_scene(tmp_path / "s.toml"))
+    assert "\n" not in str(exc.value)
+
+
 def test_inflow_of_another_composition_is_refused(tmp_path):
     from cases.scene.errors import SceneError
     from cases.scene.files import load_scene
