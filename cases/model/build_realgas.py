@@ -42,7 +42,7 @@ def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> R
     fluid = _fluid(scene, gas, unit, f"cavity[{i}].gas", ideal.enthalpy)
     try:
         rho = fluid.density(c.pressure, c.temperature)
-        if fluid.mixture:
+        if c.temperature < fluid.caution_below:  # a mixture below a component's critical temperature
             check_single_phase(fluid.name, fluid.mass_fractions, rho, c.temperature)
     except ValueError as exc:
         raise SceneError(scene.path, f"cavity[{i}].gas", f"CoolProp: {exc}") from None
