@@ -22,6 +22,10 @@ an ideal-gas region (ambient) and a real-gas cavity with one enthalpy reference.
 from __future__ import annotations
 
 import math
+from functools import partial
+
+from .realgas_mixture import (IdealHeatCapacitySlope, MixtureTransport, density_at_pressure, entropy_correction,
+                              heos_state, is_mixture, mixture_jet)
 
 __all__ = ["RealFluid", "IdealGasFluid", "FluidPoint", "temperature_from_energy", "isentrope_temperature", "IDEAL_LIMIT_DENSITY",
            "shifted", "TAYLOR_BELOW",
@@ -71,15 +75,32 @@ class RealFluid:
     (89.2492, 300.0)
     """
 
-    def __init__(self, coolprop_name: str, ideal_enthalpy=None, reference_temperature: float = 300.0):
+    def __init__(self, coolprop_name: str, ideal_enthalpy=None, reference_temperature: float = 300.0,
+                 mass_fractions=None):
         import CoolProp.CoolProp as CP
 
         self.name = coolprop_name
-        self._state = CP.AbstractState("HEOS", coolprop_name)
-        self._film = CP.AbstractState("HEOS", coolprop_name)
+        self.mass_fractions = tuple(mass_fractions) if mass_fractions is not None else (1.0,)
+        self._state = heos_state(coolprop_name, self.mass_fractions)
+        self._film = heos_state(coolprop_name, self.mass_fractions)
         self._DT, self._PT = CP.DmassT_INPUTS, CP.PT_INPUTS
         self._keys = _derivative_keys(CP)
+        self._jet_of = _jet
         self.molar_mass = self._state.molar_mass()
+        self.mixture = is_mixture(coolprop_name)
+        #: [K] below which a state of a mixture is cautioned (the highest critical temperature of its components;
+        #: 0 for a pure fluid, whose two-phase states :meth:`at` refuses).
+        self.caution_below, self.caution_component = 0.0, ""
+        if self.mixture:
+            self.caution_below, self.caution_component = max(
+                (CP.PropsSI("Tcrit", name), name) for name in coolprop_name.split("&"))  # cavity.realgas_mixture: the c derivatives CoolProp refuses for a mixture
+            self._jet_of = partial(mixture_jet, IdealHeatCapacitySlope(coolprop_name.split("&"),
+                                                                       self._state.get_mole_fractions(),
+                                                                       self.molar_mass))
+            self.entropy_correction = entropy_correction(self._state)
+            self.at = self._mixture_at
+            self._film_rho, self._transport = None, MixtureTransport(coolprop_name.split("&"),
+                                                                     self._state.get_mole_fractions())
         self.offset = 0.0
         if ideal_enthalpy is not None:
             Tr = reference_temperature
@@ -87,7 +108,6 @@ class RealFluid:
             self.offset = ideal_enthalpy(Tr) - self._state.hmass()
         self.metastable = MetastableFluid(self)
         self._anchor = None  # (ρ, u, T, ∂u/∂ρ|T, cv) of the last :meth:`state`
-
 
     def __repr__(self) -> str:
         return f"RealFluid({self.name!r}, offset={self.offset!r})"
@@ -104,10 +124,19 @@ class RealFluid:
                                     "cavity holds a single-phase fluid") from None
         return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
 
+    def _mixture_at(self, rho: float, T: float) -> FluidPoint:
+        """:meth:`at` of a mixture: no two-phase test (its phase is imposed as gas), and the entropy made
+        consistent with p and u (:func:`cavity.realgas_mixture.entropy_correction`)."""
+        st = self._state
+        st.update(self._DT, rho, T)
+        off = self.offset
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off,
+                           st.smass() + self.entropy_correction * math.log(rho), st.speed_sound(), st.cvmass()))
+
     def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
         """:meth:`at` and the partial derivatives of its fields: ``(point, d/dT at fixed ρ, d/dρ at fixed T or
         None)`` (:func:`_jet`: two or four of CoolProp's analytic derivatives, 0.15 µs each)."""
-        return _jet(self._state, self.at(rho, T), rho, T, self._keys, density_too)
+        return self._jet_of(self._state, self.at(rho, T), rho, T, self._keys, density_too)
 
     def state(self, rho: float, u: float, T_guess: float) -> tuple:
         """(T [K], FluidPoint) at density ρ [kg/m^3] and specific energy u [J/kg]: :func:`temperature_from_energy`
@@ -125,7 +154,10 @@ class RealFluid:
     def density(self, p: float, T: float) -> float:
         """Density [kg/m^3] at pressure p [Pa] and temperature T [K] (a CoolProp flash, for initial states)."""
         self._film.update(self._PT, p, T)
-        return self._film.rhomass()
+        rho = self._film.rhomass()
+        if self.mixture:  # the flash's density to the last digit of p(ρ, T)
+            rho = density_at_pressure(self._film, p, T, rho)
+        return rho
 
     def temperature(self, rho: float, u: float, T_guess: float) -> float:
         """The temperature [K] of :func:`temperature_from_energy` of this fluid."""
@@ -135,6 +167,12 @@ class RealFluid:
         """(ρ [kg/m^3], cp [J/(kg K)], μ [Pa s], k [W/(m K)], β [1/K]) at p [Pa], T [K], for convection
         correlations (:mod:`cavity.wall`)."""
         st = self._film
+        if self.mixture:  # Newton on ρ from the last film state: a mixture's (p, T) flash costs ~40 µs
+            last = self._film_rho
+            self._film_rho = density_at_pressure(st, p, T, last[0] * (p / last[1]) * (last[2] / T) if last
+                                                 else p / (st.gas_constant() / self.molar_mass * T)), p, T
+            return (st.rhomass(), st.cpmass(), *self._transport(st.rhomolar(), T),
+                    st.isobaric_expansion_coefficient())
         st.update(self._PT, p, T)
         return st.rhomass(), st.cpmass(), st.viscosity(), st.conductivity(), st.isobaric_expansion_coefficient()
 
@@ -151,15 +189,14 @@ class MetastableFluid:
         import CoolProp.CoolProp as CP
 
         self.name, self._fluid = fluid.name, fluid
-        self._state = CP.AbstractState("HEOS", fluid.name)
-        self._state.specify_phase(CP.iphase_gas)
+        self._state = heos_state(fluid.name, fluid.mass_fractions, gas_phase=True)
         self._DT = CP.DmassT_INPUTS
-        self._keys = fluid._keys
+        self._keys, self._jet_of = fluid._keys, fluid._jet_of
         self.last_choke = self.last_throat = None  # warm starts of exchange.realgas_orifice
 
     def jet(self, rho: float, T: float, density_too: bool = False) -> tuple:
         """:meth:`RealFluid.jet` on the metastable continuation."""
-        return _jet(self._state, self.at(rho, T), rho, T, self._keys, density_too)
+        return self._jet_of(self._state, self.at(rho, T), rho, T, self._keys, density_too)
 
     def fundamental_derivative(self) -> float:
         """Γ = 1 + (ρ/c)(∂c/∂ρ)_s [-] at the state of the last :meth:`at` call."""
@@ -175,8 +212,10 @@ class MetastableFluid:
             raise RealGasSolveError(f"{self.name}: the expansion to the throat reaches rho = {rho!r} kg/m^3, T = {T!r} K "
                                     f"where the equation of state fails ({exc}): flashing (two-phase) orifice flow "
                                     "is not modelled") from None
-        off = self._fluid.offset
-        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, st.smass(), c, st.cvmass()))
+        off, s = self._fluid.offset, st.smass()
+        if self._fluid.mixture:
+            s += self._fluid.entropy_correction * math.log(rho)
+        return FluidPoint((st.p(), st.umass() + off, st.hmass() + off, s, c, st.cvmass()))
 
 
 def _derivative_keys(CP) -> tuple:

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .caution import caution
 from .cavity import Cavity
 
 __all__ = ["RealGasCavity", "RealGasState", "REAL_GAS_ENERGY_MODELS"]
@@ -87,6 +88,8 @@ class RealGasCavity(Cavity):
         fluid = self.fluid
         rho = m / V_eos
         T, pt = fluid.state(rho, float(unknowns[ns]) / m, T_guess) if m > 0.0 else (T_guess, None)
+        if T < fluid.caution_below:
+            _caution_condensable(self.name, fluid)
         p = pt[0] if pt is not None else 0.0
         kappa = rho * pt[4] ** 2 / p if pt is not None else 1.4
         R = p / (rho * T) if pt is not None else 1.0
@@ -117,6 +120,12 @@ class RealGasCavity(Cavity):
             s.heat_out, s.extra_rates = q_in, ((q_in - q_out) / wall.thermal_mass, q_out)
         else:
             s.heat_out, s.extra_rates = q_in, wall.layer_rates(s.wall_layers, q_in, q_out) + (q_out,)
+
+
+def _caution_condensable(name: str, fluid) -> None:
+    caution(f"cavity {name}: the {fluid.name} mixture is below the critical temperature of {fluid.caution_component} "
+            f"({fluid.caution_below:.1f} K): it is evaluated as a gas (phase imposed; only the initial state is "
+            "checked to be single-phase), condensation is not modelled")
 
 
 @dataclass(slots=True)

@@ -244,7 +244,7 @@ def _inflator(gas: GasModel, inf, scene: Scene | None = None):
     if inf.type == "tank_test" and inf.tank_gas == "real_gas":
         from cases.model.build_realgas import real_gas_tank_test
 
-        return real_gas_tank_test(scene, inf, tuple(y), mix)
+        return real_gas_tank_test(scene, gas, inf, tuple(y), mix)
     if inf.type == "mass_temperature":
         return MassTemperatureInflator(inf.name, inf.mass_flow, inf.temperature, tuple(y), mix, inf.start, inf.scale)
     if inf.type == "tank_test":

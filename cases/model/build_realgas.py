@@ -8,6 +8,7 @@ import numpy as np
 from cavity.gas import GasModel
 from cavity.inflator_realgas import RealGasTankTestInflator, real_gas_tank_masses
 from cavity.realgas import RealFluid
+from cavity.realgas_mixture import check_single_phase
 from cavity.tables import Table
 from cavity.realgas_cavity import RealGasCavity
 from cavity.wall import Wall
@@ -19,19 +20,38 @@ from cases.scene.realgas import coolprop_name
 
 __all__ = ["real_gas_cavity", "real_gas_laws", "real_gas_tank_test"]
 
-def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> RealGasCavity:
-    """The :class:`RealGasCavity` of ``scene.cavity[i]`` (initial mass from HEOS density at p, T)."""
-    c = scene.cavity[i]
-    name = next(k for k, v in c.gas.items() if v > 0)
-    k = gas.index(name)
-    unit = np.zeros(len(gas.species))
-    unit[k] = 1.0
-    ideal = gas.mixture(unit)  # 1 kg of the fluid as an ideal gas: the enthalpy reference
+def _fluid(scene, gas: GasModel, y, where: str, ideal_enthalpy=None) -> RealFluid:
+    """The HEOS fluid of the species with mass fractions ``y`` (ns,) > 0: pure, or a mixture of fixed composition
+    (``"Nitrogen&Argon"`` with those mass fractions); CoolProp's refusals as a SceneError at ``where``."""
+    present = [k for k in range(len(y)) if y[k] > 0.0]
+    names = [coolprop_name(scene, gas.names[k]) for k in present]
+    fractions = [float(y[k]) for k in present] if len(present) > 1 else None
     try:
-        fluid = RealFluid(coolprop_name(scene, name), ideal.enthalpy, scene.ambient.temperature)
+        return RealFluid("&".join(names), ideal_enthalpy, scene.ambient.temperature, fractions)
+    except ValueError as exc:
+        raise SceneError(scene.path, where, f"CoolProp: {exc}") from None
+
+
+def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> RealGasCavity:
+    """The :class:`RealGasCavity` of ``scene.cavity[i]`` (initial mass from HEOS density at p, T); its gas one
+    species or a mixture of fixed composition (docs/realgas.md)."""
+    c = scene.cavity[i]
+    unit = gas.mass_fractions(c.gas, molar=c.gas_by_mole)
+    k = int(np.argmax(unit))
+    ideal = gas.mixture(unit)  # 1 kg of the gas as an ideal gas: the enthalpy reference
+    fluid = _fluid(scene, gas, unit, f"cavity[{i}].gas", ideal.enthalpy)
+    try:
         rho = fluid.density(c.pressure, c.temperature)
+        if c.temperature < fluid.caution_below:  # a mixture below a component's critical temperature
+            check_single_phase(fluid.name, fluid.mass_fractions, rho, c.temperature)
     except ValueError as exc:
         raise SceneError(scene.path, f"cavity[{i}].gas", f"CoolProp: {exc}") from None
+    try:
+        if c.energy == "wall" and not c.wall_inner_h:
+            fluid.film_properties(c.pressure, c.temperature)
+    except ValueError as exc:
+        raise SceneError(scene.path, f"cavity[{i}].wall_inner_h", f"natural convection needs the gas's viscosity "
+                         f"and conductivity; CoolProp: {exc}; give wall_inner_h instead") from None
     V0 = max(volume(0.0) + c.added_volume, c.minimum_volume)
     masses = unit * rho * V0
     wall = None
@@ -55,12 +75,17 @@ def real_gas_laws(exchanges: tuple, cavities: tuple) -> tuple:
                  for ex in exchanges)
 
 
-def real_gas_tank_test(scene, inf, mass_fractions: tuple, mix) -> RealGasTankTestInflator:
-    """A tank-test inflator whose tank holds the inflator's one species as a real gas (HEOS)."""
-    name = next(k for k, v in inf.gas.items() if v > 0)
+def real_gas_tank_test(scene, gas: GasModel, inf, mass_fractions: tuple, mix) -> RealGasTankTestInflator:
+    """A tank-test inflator whose tank holds the inflator's gas (one species or a mixture of fixed composition,
+    ``mass_fractions`` over the scene's species) as a real gas (HEOS)."""
     table = inf.tank_pressure
-    fluid = RealFluid(coolprop_name(scene, name))
-    masses = real_gas_tank_masses(fluid, inf.tank_volume, table.x, table.y, inf.tank_temperature, inf.temperature)
+    where = f"inflator {inf.name!r}.gas"
+    fluid = _fluid(scene, gas, mass_fractions, where)
+    try:
+        masses = real_gas_tank_masses(fluid, inf.tank_volume, table.x, table.y, inf.tank_temperature,
+                                      inf.temperature)
+    except (ValueError, ArithmeticError) as exc:
+        raise SceneError(scene.path, where, f"the real-gas tank: {exc}") from None
     delivered = Table(table.x, tuple(m - masses[0] for m in masses), "delivered mass [kg]")
     return RealGasTankTestInflator(inf.name, table, inf.tank_volume, inf.temperature, mass_fractions, mix,
                                    inf.start, inf.scale, delivered=delivered)

@@ -99,7 +99,8 @@ class InflatorSpec:
     start: float = key("activation time; tables are relative to it", "s", default=0.0, check="nonnegative")
     scale: float = key("multiplier on the mass flow", default=1.0, check="nonnegative")
     tank_gas: str = key("tank_test: the tank's gas, 'ideal' (ṁ = V·ṗ/(γ·R·T_in)) or 'real_gas' (CoolProp HEOS of "
-                        "the inflator's one species, docs/realgas.md)", default="ideal", choices=("ideal", "real_gas"))
+                        "the inflator's `gas`, one species or a mixture of fixed composition, docs/realgas.md)",
+                        default="ideal", choices=("ideal", "real_gas"))
     tank_temperature: float = key("tank_test with tank_gas = 'real_gas': initial tank temperature", "K",
                                   default=0.0, check="nonnegative")
 
@@ -130,7 +131,8 @@ class CavitySpec:
     wrapped_by: tuple = key("bodies whose surface the cavity mesh's nodes are placed on where they would "
                             "penetrate (the cushion wraps the impactor)", default=())
     fluid: str = key("what fills the cavity: an ideal gas, a liquid, or a real gas (CoolProp HEOS equation of "
-                     "state of the one species in `gas`, docs/realgas.md)", default="gas",
+                     "state of `gas`: one species, or a mixture of fixed composition by `gas_by_mole` mole or mass "
+                     "fractions, docs/realgas.md)", default="gas",
                      choices=("gas", "hydraulic", "real_gas"))
     density: float = key("hydraulic: density at the initial pressure and temperature", "kg/m^3", default=0.0,
                          check="nonnegative")

@@ -1,10 +1,13 @@
 """Scene checks of real-gas cavities and vessel walls (docs/realgas.md)."""
 from __future__ import annotations
 
+import functools
+
 from cavity.realgas_cavity import REAL_GAS_ENERGY_MODELS
 from cavity.species import BUILTIN_COOLPROP_NAMES
 
 from cases.scene.errors import SceneError
+from cases.scene.schema import suggest
 
 __all__ = ["check_real_gas", "coolprop_name"]
 
@@ -25,9 +28,60 @@ def _species(gas: dict) -> set:
     return {k for k, v in gas.items() if v > 0}
 
 
+@functools.lru_cache(maxsize=1)
+def _coolprop_fluids() -> tuple:
+    """CoolProp's fluid names and their aliases."""
+    import CoolProp.CoolProp as CP
+
+    names = CP.get_global_param_string("FluidsList").split(",")
+    aliases = [a for n in names for a in CP.get_fluid_param_string(n, "aliases").split(",") if a]
+    return tuple(names + aliases)
+
+
+def _check_gas(scene, gas: dict, where: str, what: str) -> list:
+    """The CoolProp names of a real gas's species (one, or a mixture of fixed composition); SceneError at
+    ``where`` for a species without one, a name CoolProp does not know (with suggestions) or pseudo-pure Air in
+    a mixture."""
+    species = sorted(_species(gas))
+    names = [coolprop_name(scene, sp) for sp in species]
+    for sp, name in zip(species, names):
+        if not name:
+            raise SceneError(scene.path, f"{where}.{sp}", f"{what} holds species with a CoolProp name (N2, He, H2, "
+                             "CO2, Ar, O2, Air, or a [[species]] with coolprop = ...)")
+    if len(names) > 1:
+        known = _coolprop_fluids()
+        for sp, name in zip(species, names):
+            if name not in known:
+                raise SceneError(scene.path, f"{where}.{sp}", f"CoolProp has no fluid {name!r}{suggest(name, known)}")
+            if name.lower() == "air":
+                raise SceneError(scene.path, f"{where}.{sp}", "CoolProp's Air is pseudo-pure and cannot be part of "
+                                 "a mixture: give air as its components (N2, O2, Ar)")
+    return names
+
+
+def _mass_basis(scene, gas: dict, by_mole: bool) -> dict:
+    """{species: mass fraction} of a real gas (CoolProp molar masses for a molar composition)."""
+    import CoolProp.CoolProp as CP
+
+    w = {k: v * (CP.PropsSI("M", coolprop_name(scene, k)) if by_mole else 1.0) for k, v in gas.items() if v > 0}
+    total = sum(w.values())
+    return {k: v / total for k, v in w.items()}
+
+
+def _same_gas(scene, a: tuple, b: tuple) -> bool:
+    """Two (gas, gas_by_mole) compositions of real-gas species are the same (mass fractions within 1e-9)."""
+    if _species(a[0]) != _species(b[0]):
+        return False
+    if len(_species(a[0])) == 1:
+        return True
+    ya, yb = _mass_basis(scene, *a), _mass_basis(scene, *b)
+    return all(abs(ya[k] - yb[k]) <= 1e-9 for k in ya)
+
+
 def check_real_gas(scene) -> None:
-    """Every real-gas cavity: one species with a CoolProp name, an energy model it supports, the wall keys its
-    wall needs, and only its own fluid flowing in (SceneError naming the key otherwise)."""
+    """Every real-gas cavity: one species or a mixture of species with CoolProp names, an energy model it
+    supports, the wall keys its wall needs, and only its own gas (the same composition) flowing in (SceneError
+    naming the key otherwise)."""
     real = {c.name: c for c in scene.cavity if c.fluid == "real_gas"}
     for i, c in enumerate(scene.cavity):
         where = f"cavity[{i}]"
@@ -38,10 +92,7 @@ def check_real_gas(scene) -> None:
             if c.energy == "wall":
                 raise SceneError(scene.path, f"{where}.energy", "energy = 'wall' needs fluid = 'real_gas'")
             continue
-        species = [k for k, v in c.gas.items() if v > 0]
-        if len(species) != 1 or not coolprop_name(scene, species[0]):
-            raise SceneError(scene.path, f"{where}.gas", "a real_gas cavity holds one species with a CoolProp "
-                             "name (N2, He, H2, CO2, Air, or a [[species]] with coolprop = ...)")
+        _check_gas(scene, c.gas, f"{where}.gas", "a real_gas cavity")
         if c.energy not in REAL_GAS_ENERGY_MODELS:
             raise SceneError(scene.path, f"{where}.energy", f"a real_gas cavity is one of "
                              f"{', '.join(map(repr, REAL_GAS_ENERGY_MODELS))}, got {c.energy!r}")
@@ -55,24 +106,23 @@ def check_real_gas(scene) -> None:
                     raise SceneError(scene.path, f"{where}.{k}", f"required (> 0) with wall_layers = {c.wall_layers} "
                                      "(1-D conduction through the wall); or set wall_layers = 1 (lumped)")
         for j, inf in enumerate(c.inflator):
-            if _species(inf.gas) != {species[0]}:
+            if not _same_gas(scene, (inf.gas, inf.gas_by_mole), (c.gas, c.gas_by_mole)):
                 raise SceneError(scene.path, f"{where}.inflator[{j}].gas", f"a real_gas cavity takes only its own "
-                                 f"fluid {species[0]!r}")
+                                 f"gas {c.gas!r} (the same composition)")
     for j, e in enumerate(scene.exchange):
         for into, other in ((e.to, e.from_), (e.from_, e.to)):
             if into not in real or (other == "ambient" and not e.two_way):
                 continue
-            gas = scene.ambient.gas if other == "ambient" else next(c.gas for c in scene.cavity if c.name == other)
-            if _species(gas) != _species(real[into].gas):
+            src = scene.ambient if other == "ambient" else next(c for c in scene.cavity if c.name == other)
+            dst = real[into]
+            if not _same_gas(scene, (src.gas, src.gas_by_mole), (dst.gas, dst.gas_by_mole)):
                 raise SceneError(scene.path, f"exchange[{j}]", f"gas flowing into the real_gas cavity {into!r} "
-                                 f"must be its own fluid (the {other} gas differs)")
+                                 f"must be its own gas, the same composition (the {other} gas differs)")
 
 
 def _check_real_tank(scene, inf, where: str) -> None:
-    gas = sorted(_species(inf.gas))
     if inf.type != "tank_test":
         raise SceneError(scene.path, f"{where}.tank_gas", "only a tank_test inflator has a real-gas tank")
-    if len(gas) != 1 or not coolprop_name(scene, gas[0]):
-        raise SceneError(scene.path, f"{where}.gas", "a real-gas tank holds one species with a CoolProp name")
+    _check_gas(scene, inf.gas, f"{where}.gas", "a real-gas tank")
     if not inf.tank_temperature:
         raise SceneError(scene.path, f"{where}.tank_temperature", "required (> 0) for tank_gas = 'real_gas'")

@@ -103,7 +103,7 @@ volume = 0.01
 
 
 @pytest.mark.parametrize("old,new,where", [
-    ('gas = {N2 = 1.0}\npressure', 'gas = {N2 = 0.5, He = 0.5}\npressure', "cavity[0].gas"),
+    ('gas = {N2 = 1.0}\npressure', 'gas = {N2 = 0.5, Air = 0.5}\npressure', "cavity[0].gas.Air"),
     ('volume = 0.01', 'volume = 0.01\nenergy = "isothermal"', "cavity[0].energy"),
     ('volume = 0.01', 'volume = 0.01\nenergy = "wall"\nwall_mass = 1.0', "cavity[0].wall_heat_capacity"),
     ('fluid = "real_gas"', 'energy = "wall"', "cavity[0].energy"),

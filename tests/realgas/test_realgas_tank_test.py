@@ -44,28 +44,37 @@ def test_real_gas_tank_states_are_heos_at_every_row():
     assert m[-1] - m[0] < ideal
 
 
-def test_scene_with_a_real_gas_tank_test_inflator(tmp_path):
-    """A rigid cavity filled by a real-gas tank-test inflator receives exactly the tank's mass gain."""
+def _ar_he():
+    from tests.realgas.test_realgas_mixture import _fluid
+
+    return _fluid("Argon&Helium", (0.9, 0.1))
+
+
+@pytest.mark.parametrize("gas,fluid", [("gas = {N2 = 1.0}", lambda: RealFluid("Nitrogen")),
+                                       ("gas = {Ar = 0.9, He = 0.1}\ngas_by_mole = true", _ar_he)])
+def test_scene_with_a_real_gas_tank_test_inflator(tmp_path, gas, fluid):
+    """A rigid cavity filled by a real-gas tank-test inflator (N2, or a hybrid inflator's Ar/He mixture) receives
+    exactly the tank's mass gain, the species in the tank's proportions."""
     from cases.model.build import build_model
     from cases.run.runner import run
     from cases.scene.files import load_scene
 
     (tmp_path / "p.csv").write_text("time [s],p [Pa]\n0,1.0e7\n0.01,1.5e7\n0.03,2.0e7\n")
-    (tmp_path / "s.toml").write_text("""
+    (tmp_path / "s.toml").write_text(f"""
 [time]
 end = 0.04
 [ambient]
-gas = {N2 = 1.0}
+gas = {{N2 = 1.0}}
 [[cavity]]
 name = "bag"
-gas = {N2 = 1.0}
+gas = {{N2 = 1.0}}
 pressure = 1.0e5
 temperature = 300.0
 volume = 0.06
 [[cavity.inflator]]
 name = "inf"
 type = "tank_test"
-gas = {N2 = 1.0}
+{gas}
 tank_pressure = "p.csv"
 tank_volume = 0.001
 temperature = 700.0
@@ -74,9 +83,12 @@ tank_temperature = 300.0
 """)
     r = run(build_model(load_scene(tmp_path / "s.toml")))
     inf = r.model.network.cavities[0].inflators[0]
-    fluid = RealFluid("Nitrogen")
-    m = real_gas_tank_masses(fluid, 0.001, (0.0, 0.01, 0.03), (1e7, 1.5e7, 2e7), 300.0, lambda t: 700.0)
+    m = real_gas_tank_masses(fluid(), 0.001, (0.0, 0.01, 0.03), (1e7, 1.5e7, 2e7), 300.0, lambda t: 700.0)
     mass = r.column("bag.mass")
     assert mass[-1] - mass[0] == pytest.approx(m[-1] - m[0], rel=1e-10)
     assert inf.mass_between(0.0, 0.04) == pytest.approx(m[-1] - m[0], rel=1e-12)
     assert np.all(np.diff(mass) >= 0.0)
+    net = r.model.network
+    delivered = r.trajectory(0.04)[net.offsets[0]:net.offsets[0] + len(net.gas.names)] - \
+        np.asarray(net.cavities[0].initial_masses)
+    assert delivered / delivered.sum() == pytest.approx(np.asarray(inf.mass_fractions), rel=1e-10, abs=1e-14)
