@@ -200,12 +200,13 @@ area = 4e-6
 """
 
 
-def test_discharge_with_a_wall_closes_the_energy_books(tmp_path):
-    """N2/Ar 0.8/0.2 from 300 bar through an orifice, natural convection to a lumped wall: ΔU = −outflow − heat
-    and m_w c_w ΔT_w = heat in − heat out, each to 1e-12; the species keep their fractions."""
+@pytest.mark.parametrize("layers", ["", "wall_layers = 4\nwall_conductivity = 45.0\nwall_thickness = 0.01\n"])
+def test_discharge_with_a_wall_closes_the_energy_books(tmp_path, layers):
+    """N2/Ar 0.8/0.2 from 300 bar through an orifice, natural convection to a lumped or a 4-layer wall: ΔU =
+    −outflow − heat and Σ C_j ΔT_j = heat in − heat out, each to 1e-12; the species keep their fractions."""
     from exchange.network import LEDGER_PER_EXCHANGE
 
-    r = _run(tmp_path, WALL, end=30.0, rtol=1e-9)
+    r = _run(tmp_path, WALL.replace("wall_length = 1.0\n", "wall_length = 1.0\n" + layers), end=30.0, rtol=1e-9)
     net = r.model.network
     y0, y1 = net.initial_state(), r.trajectory(30.0)
     cav = net.cavities[0]
@@ -215,7 +216,9 @@ def test_discharge_with_a_wall_closes_the_energy_books(tmp_path):
     scale = max(abs(y0[k + ns]), abs(out), abs(heat))
     assert abs(heat) > 1e-3 * scale and r.column("vessel.pressure")[-1] < 0.6 * 300e5
     assert abs((y1[k + ns] - y0[k + ns]) - (y1[e + 1] - out - work - heat)) <= 1e-12 * scale
-    wall = cav.wall.thermal_mass * (y1[k + ns + 1] - y0[k + ns + 1]) - (heat - y1[k + ns + 2])
+    n = cav.wall.layers
+    stored = sum(C * (y1[k + ns + 1 + j] - y0[k + ns + 1 + j]) for j, C in enumerate(cav.wall.capacities))
+    wall = stored - (heat - y1[k + ns + 1 + n])
     assert abs(wall) <= 1e-12 * max(scale, cav.wall.thermal_mass * y0[k + ns + 1])
     masses = y1[k:k + ns]
     y_start = np.asarray(cav.initial_masses) / sum(cav.initial_masses)
