@@ -7,6 +7,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from cavity.gas_rows import range_of, row_cp  # noqa: F401  (the compiled path's names for them)
+
 R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
 
 P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # columns of the state scratch
@@ -65,12 +67,6 @@ def spline_value(tx, ty, ti, k, x):
 
 
 @njit(cache=True, inline="always")
-def range_of(breaks, T):
-    """Index of the temperature range holding T [K] (bisect_right on the interior breaks)."""
-    return np.searchsorted(breaks, T, side="right") if breaks.size else 0
-
-
-@njit(cache=True, inline="always")
 def mixture_row(rows, n, i, out):
     """Mole-weighted row of range i (:meth:`cavity.gas.Mixture._combined`): Σ n_s·rows[s, i] into out (7,)."""
     for c in range(7):
@@ -85,12 +81,6 @@ def mixture_row(rows, n, i, out):
 def row_enthalpy(r, T):
     """H(T) [J] of a coefficient row (:meth:`cavity.gas.Mixture.enthalpy`)."""
     return T * (r[0] + T * (r[1] / 2.0 + T * (r[2] / 3.0 + T * (r[3] / 4.0 + T * r[5] / 5.0)))) - r[4] / T + r[6]
-
-
-@njit(cache=True, inline="always")
-def row_cp(r, T):
-    """Cp(T) [J/K] of a coefficient row (:meth:`cavity.gas.Mixture.heat_capacity_p`)."""
-    return r[0] + T * (r[1] + T * (r[2] + T * (r[3] + T * r[5]))) + r[4] / (T * T)
 
 
 @njit(cache=True, inline="always")
