@@ -4,8 +4,8 @@
 ``None`` with the reason in :func:`unsupported_reason`; :func:`cavity.integration.integrate` then runs the Python
 path. Supported: a plain ``Network`` or a scene network that lowers its geometry, ideal-gas mixtures with
 piecewise cp polynomials, adiabatic, isothermal or heat-loss gas cavities and hydraulic cavities (without
-inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table and tank-test inflators, exchanges to
-ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance,
+inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table, tank-test, pressure-and-mass and
+dual-pressure inflators, exchanges to ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance,
 leakage-table (mass or volume rate), prescribed-flux (mass or volume) or bulk-viscosity law, a constant Cd or a
 Cd table of upstream pressure or time, with an optional time window, amplitude table, pop pressure with hold time
 and DELTA LEAKAGE AREA (not on an area that follows the dynamic body).
@@ -22,11 +22,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cavity.inflator import MassTemperatureInflator, TankTestInflator
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 
 from . import laws
 from .compiled_contact import event_states, seat_arrays
+from .compiled_inflators import INFLATOR_KINDS, lower_inflators, warn_clamped
 from .discharge import DischargeTable
 from .law_kinks import dp_kinks, pressure_kinks
 from .lowered_columns import area_at_activation, law_parameters, law_tables, liquid as liquid_columns
@@ -37,8 +37,6 @@ ENERGY = {"adiabatic": 0, "isothermal": 1, "heat_loss": 2}
 #: law class of :mod:`exchange.laws` -> kind code in ``ei[:, 7]`` (:func:`exchange.compiled_rhs.law_flow`)
 LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResistanceLaw": 3, "LeakageTableLaw": 4,
              "FluxLaw": 5, "BulkViscosityLaw": 6}
-#: inflator class -> kind code in ``ii[:, 3]`` (:func:`exchange.compiled_rhs.inflator_mass_flow`)
-INFLATOR_KINDS = {MassTemperatureInflator: 0, TankTestInflator: 1}
 
 
 @dataclass
@@ -70,6 +68,7 @@ class CompiledNetwork:
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
         out = solve(model, self.kinds, self.exchanges, y0, float(t0), np.array(stops, dtype=float), float(rtol),
                     atol, float(max_step), int(max_steps), float(near), float(deadline))
+        warn_clamped(net, model[9])
         segs = out[4]
         self._run_modes = [self._mode(row) for row in segs.tolist()]
         if getattr(net, "contact", None) is not None:
@@ -94,6 +93,7 @@ class CompiledNetwork:
             out = np.empty_like(y)
             if not rhs(model, float(t), y, out, seg_end):
                 raise ArithmeticError(f"the gas temperature solve failed at t = {t:.9g} s")
+            warn_clamped(net, model[9])
             return out
         return f
 
@@ -255,23 +255,6 @@ def _cavities(net, tables):
     return np.array(ci, dtype=np.int64).reshape(-1, 9), np.array(cf, dtype=float).reshape(-1, 11)
 
 
-def _inflators(net, tables, ns, nr):
-    """``ii`` (cavity, flow table, temperature table, kind), ``if_`` (start, scale, gas mass, mass fractions, tank
-    volume, gas moles) and ``irows`` of the inflators (:mod:`exchange.compiled_rhs`); the flow table is the mass
-    flow of a mass/temperature inflator, the tank pressure of a tank-test inflator."""
-    ii, ifl, irows = [], [], []
-    for i, cav in enumerate(net.cavities):
-        for inf in cav.inflators:
-            kind = INFLATOR_KINDS[type(inf)]
-            flow = inf.tank_pressure_table if kind == 1 else inf.mass_flow_table
-            ii.append((i, tables.add(flow), tables.add(inf.temperature_table), kind))
-            ifl.append([inf.start, inf.scale, inf.gas.mass] + list(np.asarray(inf.mass_fractions, dtype=float))
-                       + [getattr(inf, "tank_volume", 0.0), inf.gas.moles])
-            irows.append(np.array(inf.gas.rows, dtype=float))
-    return (np.array(ii, dtype=np.int64).reshape(-1, 4), np.array(ifl, dtype=float).reshape(-1, 5 + ns),
-            np.array(irows, dtype=float).reshape(-1, nr, 7))
-
-
 def _exchanges(net, tables):
     ei, ef = [], []
     geometric = _geometry(net).get("areas", {})
@@ -379,7 +362,7 @@ def lower(net) -> CompiledNetwork | None:
     ns, nr = rows.shape[0], rows.shape[1]
     tables = _Tables()
     ci, cf = _cavities(net, tables)
-    ii, ifl, irows = _inflators(net, tables, ns, nr)
+    ii, ifl, irows = lower_inflators(net, tables, ns, nr)
     ei, ef = _exchanges(net, tables)
     tx, ty, ti = tables.arrays()
     a = net.ambient.point()

@@ -20,9 +20,11 @@ Array layout (built by :func:`exchange.compiled.lower`):
   ``cf`` (nc, 11): T0 [K], added volume [m^3], minimum volume [m^3], h_c·A [W/K], T_amb [K], fixed or mesh volume
   [m^3], and of a hydraulic cavity reference density [kg/m^3], bulk modulus [Pa], reference pressure [Pa],
   reference temperature [K], thermal expansion [1/K];
-- inflators ``ii`` (ni, 4) int: cavity, mass-flow (or tank-pressure) table, temperature table, kind (0 mass and
-  temperature tables, 1 tank test); ``if_`` (ni, 5 + ns): start [s], scale [-], gas mass [kg], mass fractions,
-  tank volume [m^3], gas moles [mol]; ``irows`` (ni, nr, 7) total coefficients of the inflator gas;
+- inflators ``ii`` (ni, 5) int: cavity, mass-flow (or tank-pressure) table, temperature (or inflator-pressure)
+  table, kind (0 mass and temperature tables, 1 tank test, 2 pressure and mass, 3 dual pressure), 1 once its
+  temperature was held at a bound; ``if_`` (ni, 7 + ns): start [s], scale [-], gas mass [kg], mass fractions,
+  tank volume [m^3], gas moles [mol], orifice area [m^2], Cd [-]; ``irows`` (ni, nr, 7) total coefficients of the
+  inflator gas;
 - exchanges ``ei`` (ne, 10) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
   has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`),
   geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind,
@@ -45,7 +47,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .compiled_sources import inflator_mass_flow, law_flow, liquid_state, prescribed_flow
+from .compiled_sources import inflator_flow, law_flow, liquid_state, prescribed_flow
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, mixture_row, range_of, row_cp,
                               row_enthalpy, side, spline_value, step_value, table_value, eos_volume)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
@@ -214,9 +216,8 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
         i, start = ii[q, 0], if_[q, 0]
         if t < start:
             continue
-        mdot = inflator_mass_flow(ii, if_, irows, breaks, tx, ty, ti, q, t)
+        mdot, T_in = inflator_flow(ii, if_, irows, breaks, tx, ty, ti, q, t)
         if mdot != 0.0:
-            T_in = table_value(tx, ty, ti, ii[q, 2], t - start)
             r = irows[q, range_of(breaks, T_in)]
             hdot = mdot * row_enthalpy(r, T_in) / if_[q, 2]
             k, ns, c = ci[i, 0], ci[i, 5], ci[i, 4]

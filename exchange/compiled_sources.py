@@ -12,12 +12,14 @@ import math
 from numba import njit
 
 from cavity.hydraulic import hydraulic_pressure
+from cavity.gas_rows import rows_gamma
 from cavity.inflator import tank_test_mass_flow
+from cavity.inflator_orifice import dual_pressure_state, pressure_mass_state
 
 from .bulk_viscosity import bulk_viscosity_mass_flow, linear_resistance_mass_flow
 from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
-from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, range_of, row_cp, side, table_slope,
-                              table_value, eos_volume)
+from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, table_slope, table_value,
+                              eos_volume)
 from .flux import mass_flux_mass_flow, volume_flux_mass_flow
 from .leakage_table import tabulated_leakage_mass_flow
 from .orifice import orifice_mass_flow
@@ -88,22 +90,37 @@ def prescribed_flow(ei, ef, tx, ty, ti, st, j, area, t):
 
 
 @njit(cache=True, inline="always")
-def inflator_mass_flow(ii, if_, irows, breaks, tx, ty, ti, q, t):
-    """Mass flow [kg/s] of inflator q at t >= its start (``mass_flow`` of :mod:`cavity.inflator`): the scaled
-    mass-flow table (kind ``ii[q, 3]`` 0, :class:`~cavity.inflator.MassTemperatureInflator`) or
-    :func:`cavity.inflator.tank_test_mass_flow` on the slope of the tank-pressure table, none while it falls
-    (kind 1, :class:`~cavity.inflator.TankTestInflator`)."""
-    start, scale = if_[q, 0], if_[q, 1]
-    if ii[q, 3] == 0:
-        return scale * table_value(tx, ty, ti, ii[q, 1], t - start)
-    rate = table_slope(tx, ty, ti, ii[q, 1], t - start)
-    if rate <= 0.0:
-        return 0.0
-    T = table_value(tx, ty, ti, ii[q, 2], t - start)
-    r = irows[q, range_of(breaks, T)]
-    nR = if_[q, if_.shape[1] - 1] * R_U
-    cp = row_cp(r, T)
-    return scale * tank_test_mass_flow(if_[q, if_.shape[1] - 2], rate, cp / (cp - nR), nR / if_[q, 2], T)
+def inflator_flow(ii, if_, irows, breaks, tx, ty, ti, q, t):
+    """(ṁ [kg/s], T_i [K]) of inflator q at t >= its start (``mass_flow`` and ``temperature`` of its class), by
+    kind ``ii[q, 3]`` (:data:`exchange.compiled_inflators.INFLATOR_KINDS`): 0 the scaled mass-flow table and the
+    temperature table (:class:`~cavity.inflator.MassTemperatureInflator`); 1 :func:`cavity.inflator.
+    tank_test_mass_flow` on the slope of the tank-pressure table, none while it falls
+    (:class:`~cavity.inflator.TankTestInflator`); 2 the mass-flow table and T_i of
+    :func:`cavity.inflator_orifice.pressure_mass_state` (PRESSURE AND MASS); 3 both from
+    :func:`cavity.inflator_orifice.dual_pressure_state` (DUAL PRESSURE). A temperature held at a bound raises
+    ``ii[q, 4]`` (warned after the run by :func:`exchange.compiled_inflators.warn_clamped`)."""
+    x, scale, kind = t - if_[q, 0], if_[q, 1], ii[q, 3]
+    c = if_.shape[1] - 4  # tank volume, gas moles, orifice area, Cd
+    mass, moles = if_[q, 2], if_[q, c + 1]
+    if kind == 0:
+        return scale * table_value(tx, ty, ti, ii[q, 1], x), table_value(tx, ty, ti, ii[q, 2], x)
+    if kind == 1:
+        T = table_value(tx, ty, ti, ii[q, 2], x)
+        rate = table_slope(tx, ty, ti, ii[q, 1], x)
+        if rate <= 0.0:
+            return 0.0, T
+        g = rows_gamma(irows[q], breaks, moles, T)
+        return scale * tank_test_mass_flow(if_[q, c], rate, g, moles * R_U / mass, T), T
+    p = table_value(tx, ty, ti, ii[q, 2], x)
+    if kind == 2:
+        mdot = table_value(tx, ty, ti, ii[q, 1], x)
+        T, clamped = pressure_mass_state(mdot, p, if_[q, c + 2], if_[q, c + 3], irows[q], breaks, moles, mass)
+    else:
+        mdot, T, clamped = dual_pressure_state(p, table_slope(tx, ty, ti, ii[q, 1], x), if_[q, c], if_[q, c + 2],
+                                               if_[q, c + 3], irows[q], breaks, moles, mass)
+    if clamped:
+        ii[q, 4] = 1
+    return scale * mdot, T
 
 
 @njit(cache=True)
