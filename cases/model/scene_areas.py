@@ -60,16 +60,14 @@ class GeometricAreas:
         """The geometry as arrays for the compiled path (:func:`exchange.compiled.lower`): per blocked exchange its
         area steps (crossing times, area after each) and scale table, per wrapped cavity its volume spline of
         time (of the dynamic body's displacement for the cavity it intrudes into), the dynamic body and its seat
-        contact; or why it cannot be lowered (a moving surface, a pop vent on a blocked area)."""
+        contact; or why it cannot be lowered (a moving surface)."""
         areas, volumes = {}, {}
         for j, ga in enumerate(self.areas):
             if ga is None:
                 continue
-            track, act = ga.track, self.exchanges[j].activation
+            track = ga.track
             if track.weights_at is not None:
                 return f"exchange {self.exchanges[j].name}: a leakage surface on a vertex trajectory"
-            if act is not None and act.pop_pressure is not None:
-                return f"exchange {self.exchanges[j].name}: a pop vent on a blocked leakage area"
             scale = track.scale if track.effective_area is None else None
             areas[j] = (np.asarray(track.crossings, dtype=float), track.areas, scale, not ga.by_time,
                         max(track.total_area ** 0.5, 1e-6))
