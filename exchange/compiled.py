@@ -8,7 +8,7 @@ inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table, tan
 dual-pressure inflators, exchanges to ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance,
 leakage-table (mass or volume rate), prescribed-flux (mass or volume) or bulk-viscosity law, a constant Cd or a
 Cd table of upstream pressure or time, with an optional time window, amplitude table, pop pressure with hold time
-and DELTA LEAKAGE AREA (not on an area that follows the dynamic body).
+and DELTA LEAKAGE AREA.
 
 The arrays are described in :mod:`exchange.compiled_rhs`.
 """
@@ -100,7 +100,8 @@ class CompiledNetwork:
     def _load_discrete_state(self) -> None:
         """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
         area intervals of the dynamic body, whether hard contact holds it (compiled_body), and each pop vent's
-        area at activation (DELTA LEAKAGE AREA)."""
+        area at activation (DELTA LEAKAGE AREA; for one opened by time on an area that follows the dynamic body,
+        NaN until it opens)."""
         model, net = self.model, self.network
         eq, op, hold = model[20], model[21], model[22]
         model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
@@ -112,6 +113,8 @@ class CompiledNetwork:
             hold[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
             if pop_vent:
                 model[13][j, 9] = net.area_at_activation[j] or 0.0
+            elif model[12][j, 14] and model[12][j, 10] == 2:  # set at the open time (compiled_rhs.exchange_area)
+                model[13][j, 9] = math.nan if net.area_at_activation[j] is None else net.area_at_activation[j]
 
     def _mode(self, row) -> tuple:
         """The network's snapshot (:meth:`Network.snapshot`) from a row of the solver's segment table: code
@@ -182,14 +185,11 @@ def unsupported_reason(net) -> str | None:
         for inf in cav.inflators:
             if type(inf) not in INFLATOR_KINDS or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
                 return f"inflator {inf.name}: {type(inf).__name__}"
-    for j, ex in enumerate(net.exchanges):
+    for ex in net.exchanges:
         law = type(ex.law).__name__
         if law not in LAW_KINDS or type(ex.law) is not getattr(laws, law) \
                 or not isinstance(getattr(ex.law, "discharge_coefficient", 1.0), (int, float, DischargeTable)):
             return f"exchange {ex.name}: law {law} (only {', '.join(LAW_KINDS)})"
-        act = ex.activation
-        if act is not None and act.delta_area and _geometry(net).get("areas", {}).get(j, (0,) * 4)[3]:
-            return f"exchange {ex.name}: delta area of an area that follows the dynamic body"
     return None
 
 

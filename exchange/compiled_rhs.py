@@ -144,7 +144,8 @@ def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
     """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area`); ``op[j]`` is 0 while a
     pop vent has not popped; ``iv[j]`` the interval of the dynamic body's displacement that holds the area of an
     area kind 2 (``ei[j, 10]``); with DELTA LEAKAGE AREA (``ei[j, 14]``) the base area less its value at
-    activation ``ef[j, 9]``, clipped at zero."""
+    activation ``ef[j, 9]``, clipped at zero; NaN there (an area that follows the dynamic body, opened by time) is
+    replaced by its area at the open time on the first call past it, as :meth:`Network.exchange_area` does."""
     if ei[j, 4] == 1 and not (ef[j, 2] <= t < ef[j, 3]):
         return 0.0
     if op[j] == 0:
@@ -152,6 +153,8 @@ def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
     base = base_area(ei, ef, iv, tx, ty, ti, j, t)
     if ei[j, 14] == 1:
+        if ef[j, 9] != ef[j, 9]:  # NaN: opened by time, following the dynamic body: its area at the open time,
+            ef[j, 9] = base_area(ei, ef, iv, tx, ty, ti, j, ef[j, 2])  # taken at the first call past it
         base = max(base - ef[j, 9], 0.0)
     return a * base
 
