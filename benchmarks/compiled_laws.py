@@ -1,10 +1,12 @@
 """Same-run speed of the compiled path against the Python path on the scene kinds moved to it: leakage tables,
-prescribed fluxes, bulk viscosity, Cd tables, DELTA LEAKAGE AREA, tank-test inflators, hydraulic cavities.
+prescribed fluxes, bulk viscosity, Cd tables, DELTA LEAKAGE AREA (also on an area that follows the dynamic body),
+tank-test, pressure-and-mass and dual-pressure inflators, hydraulic cavities, pop vents on blocked areas.
 
-Requires: the ventsim package and its tests/ folder (the scenes are tests.test_compiled_laws's). Run:
+Requires: the ventsim package and its tests/ folder (the scenes are tests.test_compiled_laws's,
+tests.test_compiled_inflators's and tests.test_compiled_blocked_activation's). Run:
 python benchmarks/compiled_laws.py [--repeat N]. Prints, per scene, the best of N warm solves (``integrate``
 alone, numba compiled beforehand) on each path, their ratio, steps and the largest relative pressure difference
-between the two runs. About 30 s.
+between the two runs. About 60 s.
 """
 import argparse
 import math
@@ -20,6 +22,8 @@ from cases.model.build import build_model
 from cases.run.library import CASES, HERE
 from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import integrate
+from tests.test_compiled_blocked_activation import popped_model
+from tests.test_compiled_inflators import orifice_model
 from tests.test_compiled_laws import law_model, oil_model, tank_test_model
 from tests.test_exchange_scenes import fill_with_pop
 
@@ -53,6 +57,11 @@ SCENES = {"mass-rate leakage table": lambda d: law_model(d, "mass_rate_leakage")
           "delta area by time (airbag_impactor)": airbag_delta,
           "delta area at a pop": pop_delta,
           "tank-test inflator": tank_test_model,
+          "pressure-and-mass inflator": lambda d: orifice_model(d, "pressure_mass"),
+          "dual-pressure inflator": lambda d: orifice_model(d, "dual_pressure"),
+          "pop on blocked vent (airbag_impactor)": lambda d: popped_model("airbag_impactor", 8.0e4, 0.0),
+          "delta area, dynamic body (22 ms)": lambda d: popped_model("airbag_impactor_dynamic", 0.0, 0.0,
+                                                                      open_time=0.022, delta_area=True),
           "hydraulic, leaking": leaking_oil,
           "deck_hydraulic_two_cavity": lambda d: build_model(load_scene(HERE / CASES["deck_hydraulic_two_cavity"]))}
 
