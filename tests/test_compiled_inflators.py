@@ -140,17 +140,37 @@ def test_the_fixed_point_has_converged():
     assert abs(mdot / (V_TANK * 2.5e6 / (gamma(ref) * R * ref)) - 1) <= 2e-7
 
 
-def test_a_clamped_temperature_is_warned_after_a_compiled_run(tmp_path):
-    """An inflator pressure far too high for its mass flow: T_i held at 10⁴ K, warned once on both paths."""
+@pytest.mark.parametrize("kind", ["pressure_mass", "dual_pressure"])
+def test_jitted_right_hand_side_equals_network_rhs(tmp_path, kind):
+    """The compiled right-hand side against Network.rhs along the Python trajectory, to 1e-12."""
+    from exchange.compiled_solver import rhs as compiled_rhs
+
+    model = orifice_model(tmp_path, kind)
+    net, fast = model.network, model.network.compiled_solver()
+    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
+    for t in np.linspace(0.0, model.scene.time.end, 23)[1:-1]:
+        y = traj(t)
+        net.begin_segment(t, math.inf)
+        expected = net.rhs(t, y)
+        got = np.empty_like(y)
+        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
+        assert compiled_rhs(fast.model, t, y, got, math.inf)
+        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * np.abs(expected).max()), (t, got - expected)
+
+
+@pytest.mark.parametrize("compiled, method, path", [(None, "DOP853", "compiled"), (False, "DOP853", "python"),
+                                                    (None, "LSODA", "python, compiled rhs")])
+def test_a_clamped_temperature_is_warned_on_every_path(tmp_path, compiled, method, path):
+    """An inflator pressure far too high for its mass flow: T_i held at 10⁴ K, warned (once per message) on the
+    Python path, after a compiled run, and from the compiled right-hand side under solve_ivp."""
     (tmp_path / "hot.csv").write_text("t,p\n0,1e9\n1,1e9\n")
     model = orifice_model(tmp_path, "pressure_mass", inflator_pressure="hot.csv")
-    for traj_path in ("compiled", "python"):
-        net = model.network
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", VentsimWarning)
-            traj = integrate(net, net.initial_state(), 0.0, 0.02,
-                             replace(model.options, compiled=None if traj_path == "compiled" else False))
-        assert traj.path == traj_path
-        messages = {str(w.message) for w in caught if issubclass(w.category, VentsimWarning)}
-        assert messages == {"inflator 'gen': the gas temperature from the orifice relation left [50, 10000] K and "
-                            "was held at the bound: check its pressure and mass flow tables"}
+    net = model.network
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", VentsimWarning)
+        traj = integrate(net, net.initial_state(), 0.0, 0.02, replace(model.options, compiled=compiled,
+                                                                        method=method))
+    assert traj.stats.get("path", traj.path) == path
+    messages = {str(w.message) for w in caught if issubclass(w.category, VentsimWarning)}
+    assert messages == {"inflator 'gen': the gas temperature from the orifice relation left [50, 10000] K and was "
+                        "held at the bound: check its pressure and mass flow tables"}
