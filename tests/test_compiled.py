@@ -165,7 +165,7 @@ def test_unsupported_networks_fall_back_to_python(tmp_path):
     model = build_model(scene_from_dict(copy.deepcopy(data), tmp_path / "scene.toml"))
     net = model.network
     net.exchanges = (replace(net.exchanges[0], law=OwnOrifice()),)
-    assert net.compiled_solver() is None and "law OrificeLaw" in net.compiled_unsupported()
+    assert net.compiled_solver() is None and "law OwnOrifice" in net.compiled_unsupported()
     assert integrate(net, net.initial_state(), 0.0, 0.1, model.options).path == "python"
     with pytest.raises(SolverError, match="compiled path cannot run"):
         integrate(net, net.initial_state(), 0.0, 0.1, replace(model.options, compiled=True))
