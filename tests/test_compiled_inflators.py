@@ -23,6 +23,7 @@ from cavity.integration import integrate
 from cavity.inflator_orifice import GAMMA_ITERATIONS, dual_pressure_state, pressure_mass_state
 from exchange.orifice import choked_flow_factor
 from tests.scenes import tank
+from tests.test_compiled import assert_same_rhs
 
 AIR = {"name": "AIR", "molar_mass": 0.0289, "cp": [28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0]}  # Abaqus deck
 START, SCALE, AREA, CD, V_TANK = 0.005, 0.9, 2e-5, 0.9, 0.06
@@ -143,19 +144,7 @@ def test_the_fixed_point_has_converged():
 @pytest.mark.parametrize("kind", ["pressure_mass", "dual_pressure"])
 def test_jitted_right_hand_side_equals_network_rhs(tmp_path, kind):
     """The compiled right-hand side against Network.rhs along the Python trajectory, to 1e-12."""
-    from exchange.compiled_solver import rhs as compiled_rhs
-
-    model = orifice_model(tmp_path, kind)
-    net, fast = model.network, model.network.compiled_solver()
-    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
-    for t in np.linspace(0.0, model.scene.time.end, 23)[1:-1]:
-        y = traj(t)
-        net.begin_segment(t, math.inf)
-        expected = net.rhs(t, y)
-        got = np.empty_like(y)
-        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
-        assert compiled_rhs(fast.model, t, y, got, math.inf)
-        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * np.abs(expected).max()), (t, got - expected)
+    assert_same_rhs(orifice_model(tmp_path, kind))
 
 
 @pytest.mark.parametrize("compiled, method, path", [(None, "DOP853", "compiled"), (False, "DOP853", "python"),
