@@ -22,6 +22,7 @@ from .gas import Mixture
 from .gas_rows import rows_gamma
 from .tolerances import R_UNIVERSAL
 from .inflator import quadrature_mass, scheduled_breakpoints, table_mass
+from .isentropic import choked_flow_factor
 
 __all__ = ["PressureMassInflator", "DualPressureInflator", "choked_inflator_temperature",
            "dual_pressure_mass_flow", "pressure_mass_state", "dual_pressure_state", "clamped_message"]
@@ -31,12 +32,6 @@ GAMMA_ITERATIONS = 8
 T_LOW, T_HIGH = 50.0, 1.0e4
 T_BOUNDS = (T_LOW, T_HIGH)
 T_START = 1000.0  # first guess of the fixed point [K]
-
-
-@njit(cache=True, inline="always")
-def _choked_factor(gamma: float) -> float:
-    """C*(γ) = √γ·(2/(γ+1))^((γ+1)/(2(γ−1))) [-] (:func:`exchange.orifice.choked_flow_factor`)."""
-    return gamma ** 0.5 * (2.0 / (gamma + 1.0)) ** ((gamma + 1.0) / (2.0 * (gamma - 1.0)))
 
 
 @njit(cache=True, inline="always")
@@ -57,7 +52,7 @@ def choked_inflator_temperature(mdot: float, p_inflator: float, area: float, Cd:
     >>> round(choked_inflator_temperature(0.046671171212124, 2.0e5, 1.0e-4, 1.0, 287.0, 1.4), 6)
     300.0
     """
-    return (Cd * area * p_inflator * _choked_factor(gamma) / mdot) ** 2 / R
+    return (Cd * area * p_inflator * choked_flow_factor(gamma) / mdot) ** 2 / R
 
 
 @njit(cache=True, inline="always")
@@ -76,7 +71,7 @@ def dual_pressure_mass_flow(p_inflator: float, tank_pressure_rate: float, tank_v
     >>> round(dual_pressure_mass_flow(2.0e5, 1.0e6, 0.06, 1.0e-4, 1.0, 1.4), 8)
     0.004376
     """
-    return gamma * (Cd * area * p_inflator * _choked_factor(gamma)) ** 2 / (tank_volume * tank_pressure_rate)
+    return gamma * (Cd * area * p_inflator * choked_flow_factor(gamma)) ** 2 / (tank_volume * tank_pressure_rate)
 
 
 @njit(cache=True, inline="always")

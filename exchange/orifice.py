@@ -10,6 +10,8 @@ import math
 
 from numba import njit
 
+from cavity.isentropic import choked_flow_factor
+
 __all__ = ["critical_pressure_ratio", "orifice_mass_flow", "choked_flow_factor", "is_choked", "LINEAR_BELOW"]
 
 #: Relative pressure difference (p_up − p_down)/p_up below which the orifice law's square root is replaced by a
@@ -44,26 +46,6 @@ def critical_pressure_ratio(gamma: float) -> float:
     0.528282
     """
     return (2.0 / (gamma + 1.0)) ** (gamma / (gamma - 1.0))
-
-
-def choked_flow_factor(gamma: float) -> float:
-    r"""The dimensionless choked mass-flow factor C* / Cd [-].
-
-    .. math:: \sqrt{\gamma}\left(\frac{2}{\gamma + 1}\right)^{(\gamma+1)/(2(\gamma-1))}
-
-    so that the choked flow is :math:`\dot m = C_d A\,p_e\,C^*/\sqrt{R T_e}`.
-
-    Parameters
-    ----------
-    gamma : float
-        Ratio of specific heats [-], > 1.
-
-    Examples
-    --------
-    >>> round(choked_flow_factor(1.4), 6)
-    0.684731
-    """
-    return math.sqrt(gamma) * (2.0 / (gamma + 1.0)) ** ((gamma + 1.0) / (2.0 * (gamma - 1.0)))
 
 
 def is_choked(p_up: float, p_down: float, gamma: float) -> bool:
