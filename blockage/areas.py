@@ -16,14 +16,20 @@ References: Abaqus Analysis User's Guide, "Fluid exchange" (contact blockage);
 OpenRadioss ``engine/source/airbag`` (Bvent); ``shared/PHYSICS.md``.
 """
 
+import math
+
 import numpy as np
+
+from blockage._jit import njit
 
 __all__ = [
     "active_counts",
     "blocked_face_areas",
     "blocked_fraction",
+    "edge_vectors",
     "face_areas",
     "leak_area",
+    "leak_area_of",
     "obstruction_area",
 ]
 
@@ -53,14 +59,24 @@ def face_areas(vertices, faces, face_sizes):
     >>> face_areas(v, np.array([[0, 1, 2, 3], [0, 1, 2, -1]]), np.array([4, 3])).tolist()
     [2.0, 1.0]
     """
+    first, second = edge_vectors(vertices, faces, face_sizes)
+    return 0.5 * np.linalg.norm(np.cross(first, second), axis=1)
+
+
+def edge_vectors(vertices, faces, face_sizes):
+    """The two vectors whose cross product is twice a face's vector area: a triangle's AB and AC, a quad's
+    diagonals AC and BD; each (m, 3) [m] (:func:`face_areas`, :mod:`blockage.moving_area`).
+
+    >>> v = np.array([[0.0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0]])
+    >>> [x.tolist() for x in edge_vectors(v, np.array([[0, 1, 2, 3]]), np.array([4]))]
+    [[[2.0, 1.0, 0.0]], [[-2.0, 1.0, 0.0]]]
+    """
     vertices = np.asarray(vertices, dtype=np.float64)
     faces = np.asarray(faces, dtype=np.int64)
     quad = np.asarray(face_sizes) == 4
     a, b, c = (vertices[faces[:, k]] for k in range(3))
     d = vertices[np.where(quad, faces[:, -1], faces[:, 0])]
-    first = np.where(quad[:, None], c - a, b - a)
-    second = np.where(quad[:, None], d - b, c - a)
-    return 0.5 * np.linalg.norm(np.cross(first, second), axis=1)
+    return np.where(quad[:, None], c - a, b - a), np.where(quad[:, None], d - b, c - a)
 
 
 def active_counts(active_nodes, faces, face_sizes):
@@ -159,10 +175,21 @@ def leak_area(total_area, obstruction, effective_area=None, permeability=0.0):
     >>> leak_area(3.0, 1.5, permeability=0.5)
     2.25
     """
-    if effective_area is None:
-        return float(total_area - (1.0 - permeability) * obstruction)
+    eff = math.nan if effective_area is None else float(effective_area)
+    return float(leak_area_of(float(total_area), float(obstruction), eff, float(permeability)))
+
+
+@njit(inline="always")
+def leak_area_of(total_area, obstruction, effective_area, permeability):
+    """:func:`leak_area` in numba's terms (the one implementation): ``effective_area`` NaN when none [m^2].
+
+    >>> leak_area_of(3.0, 1.5, math.nan, 0.0), leak_area_of(3.0, 1.5, 0.01, 0.0)
+    (1.5, 0.005)
+    """
+    if effective_area != effective_area:
+        return total_area - (1.0 - permeability) * obstruction
     fraction = obstruction / total_area if total_area > 0.0 else 0.0
-    return float(effective_area * (1.0 - (1.0 - permeability) * fraction))
+    return effective_area * (1.0 - (1.0 - permeability) * fraction)
 
 
 def blocked_fraction(active_nodes):

@@ -195,7 +195,7 @@ def unsupported_reason(net) -> str | None:
 
 def _geometry(net) -> dict:
     """The network's lowered geometry (``lowered_geometry()``: {"areas": {j: (steps x, y, scale table or None,
-    by displacement)}, "volumes": {cavity name: (knots, coefficients (4, pieces), by displacement)}, "body": the
+    by displacement, switch scale, moving-surface pack or None)}, "volumes": {cavity name: (knots, coefficients (4, pieces), by displacement)}, "body": the
     dynamic body's parameters or None}), or empty."""
     lowered = getattr(net, "lowered_geometry", None)
     return lowered() if lowered is not None else {"areas": {}, "volumes": {}}
@@ -266,10 +266,14 @@ def _exchanges(net, tables):
         cd, p1, p2 = law_parameters(ex.law)
         steps, scale, kind, switch_scale = -1, -1, 0, 1.0
         if j in geometric:
-            x, y, scale_table, by_displacement, switch_scale = geometric[j]
+            x, y, scale_table, by_displacement, switch_scale, moving = geometric[j]
+            if moving is not None:  # a surface on a vertex trajectory: the interval's index, then the pack
+                y = np.arange(len(x) + 1, dtype=float)
             steps = tables.add_arrays(np.concatenate([[-np.inf], x]), y)
+            if moving is not None:
+                tables.add_arrays(np.zeros(len(moving)), moving)
             scale = tables.add(scale_table) if scale_table is not None else -1
-            kind = 2 if by_displacement else 1
+            kind = 3 if moving is not None else 2 if by_displacement else 1
         ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
                    int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__], steps,
                    scale, kind) + law_tables(ex.law, tables))

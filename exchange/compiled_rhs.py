@@ -27,7 +27,8 @@ Array layout (built by :func:`exchange.compiled.lower`):
   inflator gas;
 - exchanges ``ei`` (ne, 10) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
   has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`),
-  geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind,
+  geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind
+  (0 constant, 1 steps of time, 2 steps of the dynamic body's displacement, 3 a surface on a vertex trajectory),
   law table (leakage table rows or flux amplitude, −1: none), Cd table (−1: the constant ``ef[:, 1]``), Cd
   abscissa (0 upstream pressure, 1 time); ``ef`` (ne, 9): area [m^2], Cd [-], open time [s], close time [s], pop
   pressure [Pa], hold time [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance:
@@ -46,6 +47,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from blockage.moving_area import moving_leak_area
 
 from .compiled_sources import inflator_flow, law_flow, liquid_state, prescribed_flow
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, mixture_row, range_of, row_cp,
@@ -163,7 +166,13 @@ def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
 def base_area(ei, ef, iv, tx, ty, ti, j, t):
     """Leakage area of exchange j before activation rules [m^2] (:meth:`exchange.network.Network.base_area`):
     the constant ``ef[j, 0]``, a step table of time, or the area of the dynamic body's interval ``iv[j]``, times
-    the square of its mesh scale."""
+    the square of its mesh scale; of a surface on a vertex trajectory (area kind 3) the step table gives the
+    interval of the active set and the next table holds the pack of :func:`blockage.moving_area.moving_leak_area`
+    (:meth:`cases.model.area_track.AreaTrack.area_in`)."""
+    if ei[j, 10] == 3:
+        k = ei[j, 8]
+        s, n = ti[k + 1, 0], ti[k + 1, 1]
+        return moving_leak_area(ty[s:s + n], int(step_value(tx, ty, ti, k, t)), t)
     if ei[j, 10] == 2:
         base = ty[ti[ei[j, 8], 0] + iv[j]]
     elif ei[j, 8] >= 0:

@@ -8,17 +8,20 @@ evaluation of the whole surface per interval.
 
 The leakage area then follows :func:`blockage.areas.leak_area`. When the surface moves with its cavity mesh the
 face areas change with θ: a uniformly scaled mesh scales every A_e by s(θ)² (so the area does, or not at all with an
-effective area, which keeps only the blocked fraction); a surface on a vertex trajectory gets its weights from its
-faces at θ (``weights_at``), and its area is recomputed from the active set at θ, tracked by a cursor.
+effective area, which keeps only the blocked fraction); a surface on a vertex trajectory (θ is time) has face
+areas that change within an interval: its area at θ is :func:`blockage.moving_area.moving_leak_area` of the pack
+``moving`` (face-area coefficients per frame interval and the crossings replayed by a cursor), the one evaluation
+the compiled path runs too.
 """
 from __future__ import annotations
 
 import bisect
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from blockage.areas import leak_area
+from blockage.moving_area import area_coefficients, moving_frame_times, moving_leak_area, pack
 
 from cases.model.gaps import table_values
 
@@ -58,8 +61,9 @@ class AreaTrack:
     """Leakage area of one exchange, piecewise in θ: ``crossings`` (distinct, sorted); interval i is
     [crossings[i−1], crossings[i]) with ``obstruction[i]`` and ``actives[i]`` (at the reference face areas).
 
-    ``scale``: the surface's mesh scale table s(θ) (areas × s²); ``weights_at``: θ -> (w (n,), total) for a surface
-    on a vertex trajectory; ``source``: the :class:`cases.model.crossings.Crossings` it was built from."""
+    ``scale``: the surface's mesh scale table s(θ) (areas × s²); ``moving``: the pack of
+    :mod:`blockage.moving_area` of a surface on a vertex trajectory (:meth:`on_trajectory`), else None;
+    ``source``: the :class:`cases.model.crossings.Crossings` it was built from."""
 
     crossings: np.ndarray
     obstruction: np.ndarray
@@ -68,11 +72,10 @@ class AreaTrack:
     effective_area: float | None = None
     permeability: float = 0.0
     scale: object = None
-    weights_at: object = None
+    moving: np.ndarray | None = None
     span: float = 1.0  # hi − lo of θ
     source: object = field(default=None, repr=False)
     applied: np.ndarray | None = field(default=None, repr=False)  # raw crossings replayed in interval i
-    _cursor: list = field(default_factory=list, repr=False)
 
     @classmethod
     def build(cls, weights, total, crossings, lo, hi, **options) -> "AreaTrack":
@@ -148,24 +151,30 @@ class AreaTrack:
 
     def area_in(self, i: int, theta: float) -> float:
         """Leakage area [m^2] at θ with the active set of interval i."""
-        if self.weights_at is not None:
-            w, total = self.weights_at(theta)
-            obstruction = min(float(np.dot(self._active_set(i), w)), total)  # round-off never below zero area
-            return max(leak_area(total, obstruction, self.effective_area, self.permeability), 0.0)
+        if self.moving is not None:
+            return float(moving_leak_area(self.moving, int(i), float(theta)))
         s2 = float(table_values(self.scale, np.array([theta]))[0]) ** 2 if self.scale is not None else 1.0
         return max(leak_area(self.total_area * s2, float(self.obstruction[i]) * s2, self.effective_area,
                              self.permeability), 0.0)
 
-    def _active_set(self, i: int) -> np.ndarray:
-        """(n,) bool active set of interval i, moved to from the last one asked (crossings replayed)."""
+    def open_area(self, theta: float) -> float:
+        """Leakage area [m^2] at θ with no node active."""
+        if self.moving is not None:
+            return float(moving_leak_area(self.moving, -1, float(theta)))
+        s2 = float(table_values(self.scale, np.array([theta]))[0]) ** 2 if self.scale is not None else 1.0
+        return float(leak_area(self.total_area * s2, 0.0, self.effective_area, self.permeability))
+
+    @property
+    def frame_times(self) -> np.ndarray:
+        """Frame times [s] of a surface on a vertex trajectory (its face areas have kinks there), else empty."""
+        return moving_frame_times(self.moving) if self.moving is not None else np.zeros(0)
+
+    def on_trajectory(self, times, vertices, faces, face_sizes) -> "AreaTrack":
+        """This track for a surface whose nodes move linearly between frames: ``times`` (K,) [s], ``vertices``
+        (K, n, 3) [m] (θ is time), with its pack of :mod:`blockage.moving_area` (frame-interval coefficients of
+        every face, the crossings of each interval, an effective area and permeability as this track's)."""
         src = self.source
-        if not self._cursor:
-            self._cursor[:] = [0, src.initial.copy(), _previous_states(src)]
-        k_now, active, prev = self._cursor
-        k = int(self.applied[i])
-        if k > k_now:
-            active[src.node[k_now:k]] = src.state[k_now:k]
-        elif k < k_now:
-            active[src.node[k:k_now][::-1]] = prev[k:k_now][::-1]
-        self._cursor[0] = k
-        return active
+        delta = src.state.astype(np.int64) - _previous_states(src).astype(np.int64)
+        moving = pack(times, area_coefficients(times, vertices, faces, face_sizes), faces, face_sizes, src.initial,
+                      self.applied, src.node, delta, self.effective_area, self.permeability)
+        return replace(self, moving=moving)

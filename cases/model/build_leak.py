@@ -108,16 +108,6 @@ def _knots(driver, path, lo, hi):
     return np.array([lo] + sorted(p for p in pts if lo < p < hi) + [hi])
 
 
-def _weights_at(surface, path):
-    """θ -> (node weights, total area) of a surface whose nodes move on a trajectory (face areas at θ)."""
-    idx = np.arange(len(surface.vertices))
-
-    def at(theta):
-        moved = surface.with_vertices(path.positions(np.full(len(idx), float(theta)), idx))
-        return node_weights(moved.face_areas, moved.faces, moved.face_sizes, len(idx)), moved.total_area
-    return at
-
-
 def _search(scene, j, field, n, knots):
     """The certified crossings of exchange j within the scene's wall budget, with a caution when leaves of the
     resolution stayed unsettled (a graze shorter than it may be missed)."""
@@ -154,7 +144,7 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
             _node_path(scene, surface, cavity, series or {})
         weights = node_weights(surface.face_areas, surface.faces, surface.face_sizes, len(surface.vertices))
         total = surface.total_area
-        options.update(scale=path.scale, weights_at=_weights_at(surface, path) if path.trajectory else None)
+        options.update(scale=path.scale)
     depth = float(e.penetration_depth or 0.0)
     placements = [placement_of(driver, n, depth) for n in e.blocked_by]
     if e.self_contact:
@@ -166,7 +156,9 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
     knots = _knots(driver, path, driver.lo, driver.hi)
     found = _search(scene, j, field, len(path.x0), knots)
     track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
-    if driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
+    if surface is not None and path.trajectory is not None:  # face areas that change between frames
+        track = track.on_trajectory(*path.trajectory, surface.faces, surface.face_sizes)
+    elif driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
         track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
 
     def positions(theta, nodes=None):

@@ -58,19 +58,22 @@ class GeometricAreas:
 
     def lowered_geometry(self):
         """The geometry as arrays for the compiled path (:func:`exchange.compiled.lower`): per blocked exchange its
-        area steps (crossing times, area after each) and scale table, per wrapped cavity its volume spline of
-        time (of the dynamic body's displacement for the cavity it intrudes into), the dynamic body and its seat
-        contact; or why it cannot be lowered (a moving surface)."""
+        area steps (crossing times, area after each), scale table, whether it follows the dynamic body, its switch
+        scale and the pack of a surface on a vertex trajectory (:mod:`blockage.moving_area`) or None; per wrapped
+        cavity its volume spline of time (of the dynamic body's displacement for the cavity it intrudes into), the
+        dynamic body and its seat contact; or why it cannot be lowered (a moving surface blocked by the dynamic
+        body)."""
         areas, volumes = {}, {}
         for j, ga in enumerate(self.areas):
             if ga is None:
                 continue
             track = ga.track
-            if track.weights_at is not None:
-                return f"exchange {self.exchanges[j].name}: a leakage surface on a vertex trajectory"
+            if track.moving is not None and not ga.by_time:
+                return f"exchange {self.exchanges[j].name}: a leakage surface on a vertex trajectory, blocked by " \
+                       "the dynamic body"
             scale = track.scale if track.effective_area is None else None
             areas[j] = (np.asarray(track.crossings, dtype=float), track.areas, scale, not ga.by_time,
-                        max(track.total_area ** 0.5, 1e-6))
+                        max(track.total_area ** 0.5, 1e-6), track.moving)
         for i, cav in enumerate(self.cavities):
             vol = cav.volume
             if hasattr(vol, "spline"):

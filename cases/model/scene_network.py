@@ -107,8 +107,8 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
     def breakpoints(self) -> tuple:
         pts = list(super().breakpoints)
         for ga in self.areas:
-            if ga is not None and ga.by_time:
-                pts += list(ga.track.crossings)
+            if ga is not None and ga.by_time:  # area steps, and the kinks of a surface moving between frames
+                pts += list(ga.track.crossings) + list(ga.track.frame_times)
         return tuple(pts)
 
     def states(self, t, y):

@@ -16,9 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 import blockage
-from blockage.areas import active_counts, leak_area
+from blockage.areas import active_counts
 
-from cases.model.gaps import table_values
 
 __all__ = ["LeakState", "theta_at", "thetas_at", "leak_area_at", "open_area_at", "leak_state"]
 
@@ -64,12 +63,7 @@ def leak_area_at(track, theta: float) -> float:
 
 def open_area_at(track, theta: float) -> float:
     """The track's leakage area at θ with no node active [m^2]."""
-    if track.weights_at is not None:
-        total = track.weights_at(theta)[1]
-    else:
-        total = track.total_area * (float(table_values(track.scale, np.array([theta]))[0]) ** 2
-                                    if track.scale is not None else 1.0)
-    return float(leak_area(total, 0.0, track.effective_area, track.permeability))
+    return track.open_area(theta)
 
 
 def leak_state(model, trajectory, j: int, t: float) -> LeakState:
