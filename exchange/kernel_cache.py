@@ -16,14 +16,17 @@ __all__ = ["purge_stale", "kernel_sources"]
 
 HERE = Path(__file__).resolve().parent
 STAMP = "ventsim_kernels.sha256"
+#: Kernels of other packages that the compiled path calls (the leakage area of a moving surface).
+LINKED = ("blockage/areas.py", "blockage/moving_area.py")
 
 
 def kernel_sources() -> list:
     """The modules whose numba kernels call each other (the compiled network path): every module of ``exchange``
-    and ``cavity`` that compiles with ``@njit`` (the laws are inlined into the right-hand side)."""
+    and ``cavity`` that compiles with ``@njit`` (the laws are inlined into the right-hand side), and the
+    :data:`LINKED` ones."""
     found = [p for folder in (HERE, HERE.parent / "cavity") for p in sorted(folder.glob("*.py"))
              if p.name != "kernel_cache.py" and "@njit" in p.read_text(encoding="utf-8")]
-    return sorted(found)
+    return sorted(found + [HERE.parent / name for name in LINKED if (HERE.parent / name).is_file()])
 
 
 def purge_stale() -> bool:
@@ -36,7 +39,7 @@ def purge_stale() -> bool:
         return False
     digest = hashlib.sha256(b"".join(p.read_bytes() for p in sources if p.is_file())).hexdigest()
     folders = sorted({p.parent / "__pycache__" for p in sources})
-    stamp = folders[0] / STAMP
+    stamp = HERE / "__pycache__" / STAMP
     try:
         if stamp.is_file() and stamp.read_text().strip() == digest:
             return False
@@ -44,7 +47,7 @@ def purge_stale() -> bool:
             for cached in list(folder.glob("*.nbi")) + list(folder.glob("*.nbc")):
                 if cached.name.split(".")[0] in {p.stem for p in sources}:
                     cached.unlink(missing_ok=True)
-        folders[0].mkdir(exist_ok=True)
+        stamp.parent.mkdir(exist_ok=True)
         stamp.write_text(digest + "\n")
     except OSError:
         return False

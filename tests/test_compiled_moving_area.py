@@ -1,0 +1,84 @@
+"""Leakage surfaces on a vertex trajectory on the compiled path: the same histories as the Python path, and the
+area the solver used equal to blockage.evaluate of the surface placed at each output time (brute force)."""
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import blockage
+from cases.model.build import build_model
+from cases.run.runner import run
+from cases.scene.files import load_scene, scene_from_dict
+from tests.conftest import ROOT
+from tests.scenes import tank
+from tests.test_blockage_over_time import TOL, grid_vent, tilted_plate
+
+
+def both_paths(model):
+    runs = {c: run(replace(model, options=replace(model.options, compiled=c))) for c in (None, False)}
+    assert (runs[None].summary["solver"]["path"], runs[False].summary["solver"]["path"]) == ("compiled", "python")
+    return runs[None], runs[False]
+
+
+def largest_difference(fast, slow) -> float:
+    scale = np.maximum(np.max(np.abs(slow.history), axis=0), 1e-300)
+    return float(np.max(np.abs(fast.history - slow.history) / scale))
+
+
+def test_bag_unfold_runs_compiled_with_the_python_paths_history():
+    """The library's bag: its vent is cut from the cavity's mesh series and blocked by the bag's own top sheet.
+    The two paths take the same steps; the difference is the solver's round-off growing while the vent's flow
+    nears equilibrium (2.4e-8 of the vent's peak flow, 2.5e-10 of the pressure), far inside ``ventsim check``'s
+    1e-6."""
+    fast, slow = both_paths(build_model(load_scene(ROOT / "cases" / "bag_unfold.toml")))
+    assert fast.summary["solver"]["steps"] == slow.summary["solver"]["steps"]
+    assert largest_difference(fast, slow) < 1e-7
+    area = fast.history[:, fast.columns.index("vent.area [m^2]")]
+    t = fast.history[:, 0]
+    assert np.all(area[t < 0.0058] == 0.0) and np.all(area[t > 0.0059] == 2.0e-4)
+
+
+def stretching_vent(tmp_path):
+    """A 20 mm vent of 6 x 6 quads given as its own series: it stretches in x and y (1 → 1.4 → 1.1) and rises
+    1.2 mm for 4 ms into a fixed plate tilted along x, so that its x ≈ 0 columns of nodes touch briefly while the
+    faces' areas change."""
+    grid_vent(tmp_path / "vent.obj")
+    tilted_plate().export(tmp_path / "plate.ply")
+    x0 = blockage.LeakageSurface.read(tmp_path / "vent.obj")
+    times = np.array([0.0, 0.008, 0.01, 0.012, 0.02, 0.03])
+    lift = np.array([0.0, 0.0, 1.2e-3, 0.0, 0.0, 0.0])
+    stretch = np.array([1.0, 1.2, 1.4, 1.3, 1.1, 1.1])
+    frames = np.stack([x0.vertices * [s, s, 1.0] + [0.0, 0.0, z] for s, z in zip(stretch, lift)])
+    np.savez(tmp_path / "vent.npz", times=times, vertices=frames, faces=np.asarray(x0.faces))
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": 0.03, "output_interval": 0.00025}
+    data["body"] = [{"name": "plate", "mesh": "plate.ply", "axis": [0, 0, -1]}]
+    data["exchange"] = [{"name": "vent", "from": "tank", "leakage_surface": "vent.npz", "blocked_by": ["plate"],
+                         "contact_tolerance": TOL}]
+    return build_model(scene_from_dict(data, tmp_path / "scene.toml")), (times, frames, x0.faces)
+
+
+def test_a_stretching_vent_series_with_a_brief_contact_runs_compiled_with_the_brute_force_area(tmp_path):
+    """The compiled path's area at every output time equals the leak area blockage.evaluate finds on the surface
+    moved there (its own active nodes, its own face areas): it would differ if the blocked weights or the face
+    areas between frames were wrong; and the histories equal the Python path's."""
+    model, (times, frames, faces) = stretching_vent(tmp_path)
+    track = model.network.areas[0].track
+    assert len(track.crossings) >= 4 and 0 < max(track.actives) < len(track.source.initial)  # partly blocked
+    assert set(times) <= set(model.network.breakpoints)  # the face areas' kinks are stops
+    fast, slow = both_paths(model)
+    assert largest_difference(fast, slow) < 100 * model.options.rtol
+    plate = blockage.Blocker(tilted_plate())
+    t, area = fast.history[:, 0], fast.history[:, fast.columns.index("vent.area [m^2]")]
+    checked = blocked = 0
+    for tk, ak in zip(t, area):
+        if np.min(np.abs(track.crossings - tk)) < 1e-9:
+            continue  # the state at a crossing itself is a right limit, the search's to time
+        i = min(max(np.searchsorted(times, tk, side="right") - 1, 0), len(times) - 2)
+        w = min((tk - times[i]) / (times[i + 1] - times[i]), 1.0)
+        surface = blockage.LeakageSurface((1 - w) * frames[i] + w * frames[i + 1], faces)
+        truth = blockage.evaluate(surface, [plate], TOL)
+        assert ak == pytest.approx(truth.leak_area, rel=1e-12), tk
+        checked += 1
+        blocked += truth.obstruction_area > 0.0
+    assert checked > 100 and 4 <= blocked < checked
