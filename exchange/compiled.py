@@ -195,8 +195,8 @@ def unsupported_reason(net) -> str | None:
 
 def _geometry(net) -> dict:
     """The network's lowered geometry (``lowered_geometry()``: {"areas": {j: (steps x, y, scale table or None,
-    by displacement, switch scale, moving-surface pack or None)}, "volumes": {cavity name: (knots, coefficients (4, pieces), by displacement)}, "body": the
-    dynamic body's parameters or None}), or empty."""
+    by displacement, switch scale, moving-surface pack or None)}, "volumes": {cavity name: (knots, coefficients
+    (4, pieces), by displacement)}, "body": the dynamic body's parameters or None}), or empty."""
     lowered = getattr(net, "lowered_geometry", None)
     return lowered() if lowered is not None else {"areas": {}, "volumes": {}}
 
