@@ -207,23 +207,24 @@ def _splined(net, cav) -> bool:
 
 class _Tables:
     def __init__(self):
-        self.x, self.y, self.index = [], [], []
+        self.x, self.y, self.index, self.size = [], [], [], 0
 
     def add(self, table) -> int:
-        self.index.append((len(self.x), len(table.x), 1 if table.extrapolation == "linear" else 0))
-        self.x += list(table.x)
-        self.y += list(table.y)
+        x, y = np.asarray(table.x, dtype=float).ravel(), np.asarray(table.y, dtype=float).ravel()
+        self.index.append((self.size, len(x), 1 if table.extrapolation == "linear" else 0))
+        self.x.append(x)
+        self.y.append(y)
+        self.size += len(x)
         return len(self.index) - 1
 
     def add_arrays(self, x, y) -> int:
         """A raw entry (x and y of equal length), e.g. the steps of an area or the knots of a spline."""
-        return self.add(type("T", (), {"x": tuple(x), "y": tuple(y), "extrapolation": "constant"})())
+        return self.add(type("T", (), {"x": x, "y": y, "extrapolation": "constant"})())
 
     def arrays(self):
         if not self.index:
             self.add(type("T", (), {"x": (0.0,), "y": (0.0,), "extrapolation": "constant"})())
-        return (np.array(self.x, dtype=float), np.array(self.y, dtype=float),
-                np.array(self.index, dtype=np.int64).reshape(-1, 3))
+        return (np.concatenate(self.x), np.concatenate(self.y), np.array(self.index, dtype=np.int64).reshape(-1, 3))
 
 
 def _spline_entry(tables, knots, coefficients) -> int:

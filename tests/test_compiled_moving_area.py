@@ -26,10 +26,10 @@ def largest_difference(fast, slow) -> float:
 
 
 def test_bag_unfold_runs_compiled_with_the_python_paths_history():
-    """The library's bag: its vent is cut from the cavity's mesh series and blocked by the bag's own top sheet.
-    The two paths take the same steps; the difference is the solver's round-off growing while the vent's flow
-    nears equilibrium (2.4e-8 of the vent's peak flow, 2.5e-10 of the pressure), far inside ``ventsim check``'s
-    1e-6."""
+    """The library's bag (also in tests/test_compiled.py's library comparison): its vent is cut from the cavity's
+    mesh series and blocked by the bag's own top sheet. The two paths take the same steps; every column of the
+    history agrees to 2.4e-8 of its peak (the vent's flow, where round-off in the error estimate grows while it
+    nears equilibrium; 2.5e-10 in pressure), far inside ``ventsim check``'s 1e-6."""
     fast, slow = both_paths(build_model(load_scene(ROOT / "cases" / "bag_unfold.toml")))
     assert fast.summary["solver"]["steps"] == slow.summary["solver"]["steps"]
     assert largest_difference(fast, slow) < 1e-7
