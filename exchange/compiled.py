@@ -268,10 +268,8 @@ def _exchanges(net, tables):
         steps, scale, kind, switch_scale = -1, -1, 0, 1.0
         if j in geometric:
             x, y, scale_table, by_displacement, switch_scale, moving = geometric[j]
-            if moving is not None:  # a surface on a vertex trajectory: the interval's index, then the pack
-                y = np.arange(len(x) + 1, dtype=float)
-            steps = tables.add_arrays(np.concatenate([[-np.inf], x]), y)
-            if moving is not None:
+            steps = tables.add_arrays(np.concatenate([[-np.inf], x]), y if moving is None else np.arange(len(x) + 1.0))
+            if moving is not None:  # a surface on a vertex trajectory: the steps give the interval, then its pack
                 tables.add_arrays(np.zeros(len(moving)), moving)
             scale = tables.add(scale_table) if scale_table is not None else -1
             kind = 3 if moving is not None else 2 if by_displacement else 1
