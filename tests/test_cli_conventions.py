@@ -100,3 +100,4 @@ def test_the_install_warm_up_covers_the_compiled_path_and_the_blockage_kernels()
     models = [build_model(load_scene(warmup.HERE / name)) for name in warmup.SCENES]
     assert run(models[0]).trajectory.path == "compiled"
     assert models[1].geometry is not None  # a blocked leakage surface: the blockage kernels
+    assert models[2].network.areas[0].track.moving is not None  # a vent on a mesh series: the moving-area law
