@@ -23,7 +23,8 @@ active-node counts N_c of each face at the cursor's interval (m,, updated in pla
 set the number of crossings applied (intervals,), per crossing its node and its change of state (+1, −1, 0)
 (c, c), and the faces of each node (CSR: starts (n + 1,), faces). Moving the cursor from one interval to another
 replays the crossings between them (O(crossings passed)), so the pack holds O(K·m + c) numbers, not a copy of the
-active set per interval.
+active set per interval. The cursor makes a pack state: one pack per thread (each model has its own; the compiled
+path copies it into its tables).
 """
 from __future__ import annotations
 
