@@ -9,11 +9,7 @@ from cases.run.library import CASES, RTOL, check_case, column_errors, read_refer
 def test_case_matches_reference(name):
     result = check_case(name)
     assert result.passed, f"{name}: {result.worst_column} differs by {result.error:.3e} > {RTOL} {result.message}"
-    assert result.path == ("python" if name in STILL_PYTHON else "compiled"), (name, result.path)
-
-
-#: library cases that do not lower to the compiled path yet (their solver.path is "python")
-STILL_PYTHON = {"bag_unfold"}
+    assert result.path == "compiled", (name, result.path)  # every library case runs on the one engine
 
 
 def test_check_detects_a_changed_history():
