@@ -8,16 +8,20 @@ import numpy as np
 from cavity.caution import caution
 from cavity.inflator import MassTemperatureInflator, TankTestInflator
 from cavity.inflator_orifice import DualPressureInflator, PressureMassInflator, clamped_message
+from cavity.inflator_realgas import RealGasTankTestInflator
 
 __all__ = ["INFLATOR_KINDS", "lower_inflators", "warn_clamped"]
 
 #: inflator class -> kind code in ``ii[:, 3]`` (:func:`exchange.compiled_sources.inflator_flow`)
-INFLATOR_KINDS = {MassTemperatureInflator: 0, TankTestInflator: 1, PressureMassInflator: 2, DualPressureInflator: 3}
+INFLATOR_KINDS = {MassTemperatureInflator: 0, TankTestInflator: 1, PressureMassInflator: 2, DualPressureInflator: 3,
+                  RealGasTankTestInflator: 4}
 
 
 def _tables(inf, kind: int) -> tuple:
     """The inflator's two tables as ``ii[:, 1]`` and ``ii[:, 2]`` hold them: (mass flow or tank pressure,
     temperature or inflator pressure)."""
+    if kind == 4:  # a real-gas tank: the delivered mass its states give at load, and the temperature table
+        return inf.delivered, inf.temperature_table
     first = inf.tank_pressure_table if kind in (1, 3) else inf.mass_flow_table
     second = inf.pressure_table if kind >= 2 else inf.temperature_table
     return first, second

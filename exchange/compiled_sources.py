@@ -97,13 +97,17 @@ def inflator_flow(ii, if_, irows, breaks, tx, ty, ti, q, t):
     tank_test_mass_flow` on the slope of the tank-pressure table, none while it falls
     (:class:`~cavity.inflator.TankTestInflator`); 2 the mass-flow table and T_i of
     :func:`cavity.inflator_orifice.pressure_mass_state` (PRESSURE AND MASS); 3 both from
-    :func:`cavity.inflator_orifice.dual_pressure_state` (DUAL PRESSURE). A temperature held at a bound raises
+    :func:`cavity.inflator_orifice.dual_pressure_state` (DUAL PRESSURE); 4 the slope of the delivered-mass table
+    of a real-gas tank (:class:`~cavity.inflator_realgas.RealGasTankTestInflator`, its tank states solved through
+    HEOS at load) and the temperature table. A temperature held at a bound raises
     ``ii[q, 4]`` (warned after the run by :func:`exchange.compiled_inflators.warn_clamped`)."""
     x, scale, kind = t - if_[q, 0], if_[q, 1], ii[q, 3]
     c = if_.shape[1] - 4  # tank volume, gas moles, orifice area, Cd
     mass, moles = if_[q, 2], if_[q, c + 1]
     if kind == 0:
         return scale * table_value(tx, ty, ti, ii[q, 1], x), table_value(tx, ty, ti, ii[q, 2], x)
+    if kind == 4:
+        return scale * table_slope(tx, ty, ti, ii[q, 1], x), table_value(tx, ty, ti, ii[q, 2], x)
     if kind == 1:
         T = table_value(tx, ty, ti, ii[q, 2], x)
         rate = table_slope(tx, ty, ti, ii[q, 1], x)
