@@ -98,8 +98,7 @@ class RealGasCavity(Cavity):
         if self.wall is not None:  # its heat flows: wall_heat, called by the right-hand side only
             s.wall_temperature = float(unknowns[ns + 1])
             s.outer_wall_temperature = float(unknowns[ns + self.wall.layers])
-            if self.wall.layers > 1:
-                s.wall_layers = tuple(unknowns[ns + 1:ns + 1 + self.wall.layers])
+            s.wall_layers = tuple(unknowns[ns + 1:ns + 1 + self.wall.layers])
         else:
             s.heat_out = self.heat_loss(T)  # Cavity's h_c·A·(T − T_amb), 0 unless heat_loss
         return s
@@ -116,10 +115,7 @@ class RealGasCavity(Cavity):
         wall = self.wall
         q_in, q_out = wall.heat_flows(self.fluid, s.pressure, s.temperature, s.wall_temperature, inflow,
                                       s.outer_wall_temperature) if s.mixture.mass > 0.0 else (0.0, 0.0)
-        if wall.layers == 1:
-            s.heat_out, s.extra_rates = q_in, ((q_in - q_out) / wall.thermal_mass, q_out)
-        else:
-            s.heat_out, s.extra_rates = q_in, wall.layer_rates(s.wall_layers, q_in, q_out) + (q_out,)
+        s.heat_out, s.extra_rates = q_in, wall.layer_rates(s.wall_layers, q_in, q_out) + (q_out,)
 
 
 def _caution_condensable(name: str, fluid) -> None:

@@ -33,6 +33,8 @@ def layer_capacities(thermal_mass: float, inner_area: float, outer_area: float, 
     >>> layer_capacities(100.0, 1.0, 3.0, 2)
     (37.5, 62.5)
     """
+    if layers == 1:  # the lumped wall holds it all (exactly: no rounding through the weights)
+        return (thermal_mass,)
     weights = [_area(inner_area, outer_area, j / layers) + _area(inner_area, outer_area, (j + 1) / layers)
                for j in range(layers)]
     total = sum(weights)
