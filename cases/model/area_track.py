@@ -153,15 +153,19 @@ class AreaTrack:
         """Leakage area [m^2] at θ with the active set of interval i."""
         if self.moving is not None:
             return float(moving_leak_area(self.moving, int(i), float(theta)))
-        s2 = float(table_values(self.scale, np.array([theta]))[0]) ** 2 if self.scale is not None else 1.0
+        s2 = self._area_scale(theta)
         return max(leak_area(self.total_area * s2, float(self.obstruction[i]) * s2, self.effective_area,
                              self.permeability), 0.0)
+
+    def _area_scale(self, theta: float) -> float:
+        """s(θ)² of a surface scaled with its cavity mesh (face areas × s²), else 1."""
+        return float(table_values(self.scale, np.array([theta]))[0]) ** 2 if self.scale is not None else 1.0
 
     def open_area(self, theta: float) -> float:
         """Leakage area [m^2] at θ with no node active."""
         if self.moving is not None:
             return float(moving_leak_area(self.moving, -1, float(theta)))
-        s2 = float(table_values(self.scale, np.array([theta]))[0]) ** 2 if self.scale is not None else 1.0
+        s2 = self._area_scale(theta)
         return float(leak_area(self.total_area * s2, 0.0, self.effective_area, self.permeability))
 
     @property
