@@ -13,8 +13,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .species import Species, molar_enthalpy
-from .tolerances import R_UNIVERSAL, TOL
+from .gas_rows import temperature as row_temperature
+from .species import Species, enthalpy_polynomial, heat_capacity_polynomial, molar_enthalpy
+from .tolerances import R_UNIVERSAL
 
 __all__ = ["GasModel", "Mixture", "TemperatureSolveError"]
 
@@ -51,7 +52,7 @@ class Mixture:
         self.breaks = breaks
         self._rows = rows
         self._moles_by_species = _moles_by_species  # list (ns,) [mol], with _model: rows are computed lazily
-        self._model = _model  # (per-range per-species rows, per-range "cp is constant" flags)
+        self._model = _model  # GasModel._per_range: per-range per-species rows, "cp is constant" flags, arrays
         self._index = -1
         self._current = None
 
@@ -97,7 +98,7 @@ class Mixture:
     def enthalpy(self, T: float) -> float:
         """Total enthalpy H(T) [J] (reference: the polynomial antiderivative of the first range)."""
         a, b, c, d, e, f, off = self._row(T)
-        return T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T + off
+        return enthalpy_polynomial(a, b, c, d, e, f, T) + off
 
     def internal_energy(self, T: float) -> float:
         """Total internal energy U(T) = H(T) − n·R_u·T [J]."""
@@ -106,7 +107,7 @@ class Mixture:
     def heat_capacity_p(self, T: float) -> float:
         """Total isobaric heat capacity Cp(T) [J/K]."""
         a, b, c, d, e, f, _ = self._row(T)
-        return a + T * (b + T * (c + T * (d + T * f))) + e / (T * T)
+        return heat_capacity_polynomial(a, b, c, d, e, f, T)
 
     def heat_capacity_v(self, T: float) -> float:
         """Total isochoric heat capacity Cv(T) = Cp − n·R_u [J/K]."""
@@ -123,36 +124,19 @@ class Mixture:
         return self.moles * R_UNIVERSAL / self.mass
 
     def temperature(self, U: float, T_guess: float) -> float:
-        """Temperature [K] whose internal energy is U [J], by Newton's method on the analytic U(T).
+        """Temperature [K] whose internal energy is U [J], by Newton's method on the analytic U(T) from T_guess
+        (:func:`cavity.gas_rows.temperature`, the solver the compiled path runs too).
 
-        U(T) is strictly increasing (Cv > 0) over the data, so Newton converges from any positive guess in a few
-        steps; steps are kept above :attr:`Tolerances.temperature_floor` and within a factor 2 of the last iterate
-        (a polynomial cp such as the Abaqus air deck turns negative far above its data, giving U(T) a second,
-        spurious root that an undamped step from a poor guess can land on). Where cp is constant over a range (U linear
-        in T) the Newton step lands on the root at once, and that root is returned as soon as it lies in the
-        same range.
+        U(T) is strictly increasing (Cv > 0) over the data, so the damped Newton converges from any positive guess
+        in a few steps; where cp is constant over a range the step lands on the root at once.
         """
-        nR = self.moles * R_UNIVERSAL
-        linear = self._model[1] if self._model is not None else None
-        T = T_guess
-        for _ in range(TOL.newton_max_iterations):
-            i = self._range(T)
-            a, b, c, d, e, f, off = self._row_of_range(i)
-            if linear is not None and linear[i]:
-                T_new = (U - off) / (a - nR)  # U = (a − nR)·T + off exactly
-                if T_new >= TOL.temperature_floor and self._range(T_new) == i:
-                    return T_new
-            else:
-                U_T = T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T + off - nR * T
-                cv = a + T * (b + T * (c + T * (d + T * f))) + e / (T * T) - nR
-                T_new = min(max(T - (U_T - U) / cv, 0.5 * T), 2.0 * T)  # damped: never leaps onto a far root
-            if T_new < TOL.temperature_floor:
-                T_new = 0.5 * (T + TOL.temperature_floor)
-            if abs(T_new - T) <= TOL.newton_rtol * T_new:
-                return T_new
-            T = T_new
-        raise TemperatureSolveError(f"no temperature found for U = {U!r} J, n = {self.moles!r} mol "
-                                    f"(last T = {T!r} K)")
+        table, linear, breaks = self._model[2:]
+        T, _ = row_temperature(table, breaks, linear, np.asarray(self._moles_by_species), self.moles, float(U),
+                               float(T_guess), np.empty(7))
+        if not T == T:
+            raise TemperatureSolveError(f"no temperature found for U = {U!r} J, n = {self.moles!r} mol "
+                                        f"(from T = {T_guess!r} K)")
+        return T
 
 
 @dataclass(frozen=True)
@@ -196,7 +180,8 @@ class GasModel:
         # (b..f all zero), which makes U linear in T; used by Mixture to build only the rows it needs.
         per_range = [table[:, i, :].tolist() for i in range(table.shape[1])]
         linear = tuple(bool(np.all(table[:, i, 1:6] == 0.0)) for i in range(table.shape[1]))
-        object.__setattr__(self, "_per_range", (per_range, linear))
+        object.__setattr__(self, "_per_range", (per_range, linear, table, np.array(linear, dtype=np.int64),
+                                                np.array(breaks, dtype=float)))
         object.__setattr__(self, "_molar_mass_list", tuple(float(s.molar_mass) for s in self.species))
 
     @property

@@ -14,53 +14,77 @@ import numpy as np
 
 from .tolerances import R_UNIVERSAL
 
-__all__ = ["Species", "molar_heat_capacity", "molar_enthalpy", "molar_internal_energy", "species_from_coolprop",
+__all__ = ["Species", "heat_capacity_polynomial", "enthalpy_polynomial", "molar_heat_capacity", "molar_enthalpy", "molar_internal_energy", "species_from_coolprop",
            "fit_species_from_coolprop", "species_record", "builtin_species", "BUILTIN_COOLPROP_NAMES"]
 
 N_COEFFICIENTS = 6
 
 
-def molar_heat_capacity(coefficients, T: float) -> float:
-    r"""Molar isobaric heat capacity of the polynomial model [J/(mol K)].
+def heat_capacity_polynomial(a, b, c, d, e, f, T):
+    r"""Isobaric heat capacity of the polynomial model [J/K per the coefficients' amount, e.g. J/(mol K)].
 
     .. math:: \tilde c_p(T) = a + bT + cT^2 + dT^3 + e/T^2 + fT^4
 
+    The one definition of the law: :func:`molar_heat_capacity`, :class:`cavity.gas.Mixture` and the compiled
+    path (:func:`cavity.gas_rows.row_cp`, the same function compiled by numba) all evaluate it.
+
     Parameters
     ----------
-    coefficients : (6,) float
-        a [J/(mol K)], b [J/(mol K²)], c [J/(mol K³)], d [J/(mol K⁴)], e [J K/mol], f [J/(mol K⁵)].
+    a, b, c, d, e, f : float
+        a [J/(mol K)], b [J/(mol K²)], c [J/(mol K³)], d [J/(mol K⁴)], e [J K/mol], f [J/(mol K⁵)] (or the same
+        per any amount of gas: totals over a mixture's moles).
     T : float
         Temperature [K].
 
     References
     ----------
-    Abaqus Analysis User's Guide, "Fluid cavity definition", *CAPACITY, TYPE=POLYNOMIAL.
+    Abaqus Analysis User's Guide, "Fluid cavity definition", *CAPACITY, TYPE=POLYNOMIAL (f: Radioss's T⁴ term).
 
     Examples
     --------
     Air (Abaqus verification deck) at 300 K:
 
-    >>> round(molar_heat_capacity((28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0, 0.0), 300.0), 4)
+    >>> round(heat_capacity_polynomial(28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0, 0.0, 300.0), 4)
     29.0792
     """
-    a, b, c, d, e, f = coefficients
     return a + T * (b + T * (c + T * (d + T * f))) + e / (T * T)
 
 
-def molar_enthalpy(coefficients, T: float) -> float:
-    r"""Molar enthalpy, the antiderivative of :func:`molar_heat_capacity` [J/mol].
+def enthalpy_polynomial(a, b, c, d, e, f, T):
+    r"""Enthalpy, the antiderivative of :func:`heat_capacity_polynomial` [J per the coefficients' amount].
 
     .. math:: \tilde h(T) = aT + bT^2/2 + cT^3/3 + dT^4/4 - e/T + fT^5/5
+
+    Reference: the antiderivative's zero (constant offsets per temperature range are added by the callers, so that
+    H is continuous across ranges). The one definition, as :func:`heat_capacity_polynomial`.
 
     Examples
     --------
     With constant cp the enthalpy is a·T:
 
+    >>> enthalpy_polynomial(29.0, 0.0, 0.0, 0.0, 0.0, 0.0, 300.0)
+    8700.0
+    """
+    return T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T
+
+
+def molar_heat_capacity(coefficients, T: float) -> float:
+    """Molar isobaric heat capacity [J/(mol K)] of the coefficients (a, b, c, d, e, f) at T [K]
+    (:func:`heat_capacity_polynomial`).
+
+    >>> round(molar_heat_capacity((28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0, 0.0), 300.0), 4)
+    29.0792
+    """
+    return heat_capacity_polynomial(*coefficients, T)
+
+
+def molar_enthalpy(coefficients, T: float) -> float:
+    """Molar enthalpy [J/mol] of the coefficients (a, b, c, d, e, f) at T [K] (:func:`enthalpy_polynomial`).
+
     >>> molar_enthalpy((29.0, 0, 0, 0, 0, 0), 300.0)
     8700.0
     """
-    a, b, c, d, e, f = coefficients
-    return T * (a + T * (b / 2.0 + T * (c / 3.0 + T * (d / 4.0 + T * f / 5.0)))) - e / T
+    return enthalpy_polynomial(*coefficients, T)
 
 
 def molar_internal_energy(coefficients, T: float) -> float:

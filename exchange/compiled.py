@@ -360,8 +360,7 @@ def lower(net) -> CompiledNetwork | None:
         purge_stale()
         _CACHE_CHECKED.append(True)
     gas = net.gas
-    per_range, linear = gas._per_range
-    rows = np.array(per_range, dtype=float).transpose(1, 0, 2).copy()  # (ns, nr, 7)
+    _, _, rows, linear, breaks = gas._per_range  # rows (ns, nr, 7) per mole; int flags and breaks as Mixture's
     ns, nr = rows.shape[0], rows.shape[1]
     tables = _Tables()
     ci, cf = _cavities(net, tables)
@@ -372,7 +371,7 @@ def lower(net) -> CompiledNetwork | None:
     amb = np.array([a.p, a.T, a.rho, a.R, a.gamma, a.h] + list(np.asarray(a.mass_fractions, dtype=float)))
     nc = len(net.cavities)
     T0 = np.array([c.initial_temperature for c in net.cavities], dtype=float)
-    model = (rows, np.array(gas.breaks, dtype=float), np.array(linear, dtype=np.int64),
+    model = (rows, breaks, linear,
              np.asarray(gas.molar_masses, dtype=float), tx, ty, ti, ci, cf, ii, ifl, irows, ei, ef, amb,
              int(net.ledger_offset), T0.copy(), np.zeros((nc, 9 + ns)), np.zeros(ns), np.zeros(7),
              np.zeros(len(net.exchanges), dtype=np.int64), np.ones(len(net.exchanges), dtype=np.int64),

@@ -43,53 +43,18 @@ Array layout (built by :func:`exchange.compiled.lower`):
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
 from blockage.moving_area import moving_leak_area
+from cavity.gas_rows import mixture_row, range_of, row_cp, row_enthalpy, temperature
 
 from .compiled_sources import inflator_flow, law_flow, liquid_state, prescribed_flow
-from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, mixture_row, range_of, row_cp,
-                              row_enthalpy, side, spline_value, step_value, table_value, eos_volume)
+
+from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, spline_value, step_value,
+                              table_value, eos_volume)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 from .orifice import LINEAR_BELOW, critical_pressure_ratio
-
-NEWTON_RTOL = 1e-10  # cavity.tolerances.TOL.newton_rtol
-NEWTON_MAX = 60
-T_FLOOR = 1.0
-
-
-@njit(cache=True, inline="always")
-def temperature(rows, breaks, linear, n, nmol, U, T_guess, row):
-    """T [K] with U(T) = U [J] by Newton (:meth:`cavity.gas.Mixture.temperature`); NaN if it fails.
-
-    ``row`` (7,) is scratch; on return it holds the row of the range of T (index returned second).
-    """
-    nR = nmol * R_U
-    T = T_guess
-    cur = -1
-    for _ in range(NEWTON_MAX):
-        i = range_of(breaks, T)
-        if i != cur:
-            mixture_row(rows, n, i, row)
-            cur = i
-        if linear[i]:
-            T_new = (U - row[6]) / (row[0] - nR)
-            if T_new >= T_FLOOR and range_of(breaks, T_new) == i:
-                return T_new, cur
-        else:
-            U_T = row_enthalpy(row, T) - nR * T
-            cv = row_cp(row, T) - nR
-            T_new = T - (U_T - U) / cv
-        if T_new < T_FLOOR:
-            T_new = 0.5 * (T + T_FLOOR)
-        if abs(T_new - T) <= NEWTON_RTOL * T_new:
-            return T_new, cur
-        T = T_new
-    return math.nan, cur
-
 
 @njit(cache=True, inline="always")
 def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row):

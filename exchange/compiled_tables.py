@@ -1,5 +1,5 @@
-"""The lowest kernels of the compiled path: tables (piecewise linear, steps, cubic splines), gas coefficient rows,
-and the columns of the state scratch; shared by :mod:`exchange.compiled_rhs` and :mod:`exchange.compiled_sources`
+"""The lowest kernels of the compiled path: tables (piecewise linear, steps, cubic splines), volumes and the
+columns of the state scratch (the gas's rows: :mod:`cavity.gas_rows`); shared by :mod:`exchange.compiled_rhs` and :mod:`exchange.compiled_sources`
 (array layout: :mod:`exchange.compiled_rhs`). Each mirrors the Python method named in its docstring.
 """
 from __future__ import annotations
@@ -7,9 +7,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from cavity.gas_rows import range_of, row_cp  # noqa: F401  (the compiled path's names for them)
-
-R_U = 8.314462618  # cavity.tolerances.R_UNIVERSAL
+from cavity.tolerances import R_UNIVERSAL as R_U
 
 P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # columns of the state scratch
 
@@ -64,23 +62,6 @@ def spline_value(tx, ty, ti, k, x):
     value = ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3]
     slope = (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2] if inside else 0.0
     return value, slope
-
-
-@njit(cache=True, inline="always")
-def mixture_row(rows, n, i, out):
-    """Mole-weighted row of range i (:meth:`cavity.gas.Mixture._combined`): Σ n_s·rows[s, i] into out (7,)."""
-    for c in range(7):
-        out[c] = n[0] * rows[0, i, c]
-    for s in range(1, n.size):
-        if n[s] != 0.0:
-            for c in range(7):
-                out[c] += n[s] * rows[s, i, c]
-
-
-@njit(cache=True, inline="always")
-def row_enthalpy(r, T):
-    """H(T) [J] of a coefficient row (:meth:`cavity.gas.Mixture.enthalpy`)."""
-    return T * (r[0] + T * (r[1] / 2.0 + T * (r[2] / 3.0 + T * (r[3] / 4.0 + T * r[5] / 5.0)))) - r[4] / T + r[6]
 
 
 @njit(cache=True, inline="always")
