@@ -82,3 +82,27 @@ def test_a_stretching_vent_series_with_a_brief_contact_runs_compiled_with_the_br
         checked += 1
         blocked += truth.obstruction_area > 0.0
     assert checked > 100 and 4 <= blocked < checked
+
+
+def test_the_smallest_leakage_area_of_a_stretching_vent_is_the_brute_force_minimum(tmp_path):
+    """summary.json's minimum leakage area of a vent whose faces change area within each interval: the smallest of
+    blockage.evaluate on the surface moved to 3,001 times (and to both sides of each crossing), not the blocked
+    interval at the reference face areas (which the stretched faces never have while blocked)."""
+    model, (times, frames, faces) = stretching_vent(tmp_path)
+    info = run(model).summary["blockage"]["vent"]
+    plate = blockage.Blocker(tilted_plate())
+    track = model.network.areas[0].track
+
+    def brute(tk):
+        i = min(max(np.searchsorted(times, tk, side="right") - 1, 0), len(times) - 2)
+        w = min((tk - times[i]) / (times[i + 1] - times[i]), 1.0)
+        surface = blockage.LeakageSurface((1 - w) * frames[i] + w * frames[i + 1], faces)
+        return blockage.evaluate(surface, [plate], TOL).leak_area
+
+    grid = np.unique(np.concatenate([np.linspace(0.0, 0.03, 3001), track.crossings - 1e-13, track.crossings + 1e-13]))
+    truth = min(brute(tk) for tk in grid)
+    assert info["minimum leakage area [m^2]"] == pytest.approx(truth, rel=1e-9)
+    t_min = info["minimum leakage area time [s]"]
+    assert min(brute(t_min + 1e-13), brute(t_min - 1e-13)) == pytest.approx(truth, rel=1e-9)
+    reference = track.areas[int(np.argmin(track.areas))]  # the old figure: frame-0 face areas
+    assert reference < 0.99 * truth

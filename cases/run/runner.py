@@ -271,8 +271,9 @@ def _run(model: Model, options, progress: bool) -> Results:
 
 
 def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dict:
-    """Per blocked exchange: time of first blockage, minimum leakage area and when (exact: areas are
-    piecewise constant and change only at crossings)."""
+    """Per blocked exchange: time of first blockage, minimum leakage area and when (by time: over the run,
+    :meth:`AreaTrack.smallest_area`, exact where areas are piecewise constant; by a body's pose: over the intervals
+    the run used)."""
     out, t_end = {}, model.scene.time.end
     for j, ga in enumerate(model.network.areas):
         if ga is None:
@@ -282,6 +283,7 @@ def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dic
             starts = np.concatenate([[0.0], track.crossings])
             inside = starts <= t_end
             areas, times, actives = track.areas[inside], starts[inside], np.array(track.actives)[inside]
+            smallest = track.smallest_area(0.0, t_end, history[:, 0])  # face areas that change inside intervals
         else:
             times, idx = [], []  # the interval each segment used (a switch or a re-derivation changed it)
             for seg, mode in zip(traj.segments, traj.modes):
@@ -290,10 +292,11 @@ def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dic
                     idx.append(mode[1][j])
             areas, actives = track.areas[idx], np.array(track.actives)[idx]
             times = np.array(times)
-        k = int(np.argmin(areas))
+            k = int(np.argmin(areas))
+            smallest = (float(areas[k]), float(times[k]))
         blocked = np.flatnonzero(np.asarray(actives) > 0)
         out[name] = {"first blockage time [s]": float(times[blocked[0]]) if blocked.size else None,
-                     "minimum leakage area [m^2]": float(areas[k]), "minimum leakage area time [s]": float(times[k]),
+                     "minimum leakage area [m^2]": smallest[0], "minimum leakage area time [s]": smallest[1],
                      "total leakage surface area [m^2]": track.total_area, "area switches": len(times) - 1,
                      "crossings found": int(len(track.source.theta)) if track.source is not None else 0,
                      "gap evaluations": int(track.source.evaluations) if track.source is not None else 0,
