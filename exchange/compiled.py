@@ -29,7 +29,7 @@ from .compiled_contact import event_states, seat_arrays
 from .compiled_inflators import INFLATOR_KINDS, lower_inflators, warn_clamped
 from .discharge import DischargeTable
 from .law_kinks import dp_kinks, pressure_kinks
-from .lowered_columns import area_at_activation, law_parameters, law_tables, liquid as liquid_columns
+from .lowered_columns import UNLOCKED, area_at_activation, law_parameters, law_tables, liquid as liquid_columns
 
 __all__ = ["CompiledNetwork", "lower", "unsupported_reason"]
 
@@ -68,6 +68,7 @@ class CompiledNetwork:
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
         out = solve(model, self.kinds, self.exchanges, y0, float(t0), np.array(stops, dtype=float), float(rtol),
                     atol, float(max_step), int(max_steps), float(near), float(deadline))
+        model[7][:, 9] = UNLOCKED  # outputs read the volume splines on the pieces that hold s
         warn_clamped(net, model[9])
         segs = out[4]
         self._run_modes = [self._mode(row) for row in segs.tolist()]
@@ -99,13 +100,16 @@ class CompiledNetwork:
 
     def _load_discrete_state(self) -> None:
         """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
-        area intervals of the dynamic body, whether hard contact holds it (compiled_body), and each pop vent's
+        area intervals of the dynamic body, whether hard contact holds it (compiled_body), the piece of a volume
+        spline of its displacement the segment holds, and each pop vent's
         area at activation (DELTA LEAKAGE AREA; for one opened by time on an area that follows the dynamic body,
         NaN until it opens)."""
         model, net = self.model, self.network
         eq, op, hold = model[20], model[21], model[22]
         model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
         model[25][1] = float(bool(getattr(net, "held", False)))
+        model[7][:, 9] = [UNLOCKED if getattr(c.volume, "piece", None) is None else c.volume.piece
+                          for c in net.cavities]  # a spline piece the network holds (WrappedVolume.lock)
         for j in range(len(net.exchanges)):
             pop_vent = model[12][j, 6] == 1
             eq[j] = net.equalised[j]
@@ -250,10 +254,10 @@ def _cavities(net, tables):
         hA = 0.0 if liquid else cav.heat_transfer_coefficient * cav.heat_transfer_area
         ci.append((k, 1 if liquid else ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses),
                    int(_geometry(net)["body"][0]) if kind == 4 else -1, int(liquid),
-                   tables.add(cav.temperature) if liquid else -1))
+                   tables.add(cav.temperature) if liquid else -1, UNLOCKED))
         cf.append((cav.initial_temperature, cav.added_volume, cav.minimum_volume, hA,
                    0.0 if liquid else cav.ambient_temperature, size) + liquid_columns(cav))
-    return np.array(ci, dtype=np.int64).reshape(-1, 9), np.array(cf, dtype=float).reshape(-1, 11)
+    return np.array(ci, dtype=np.int64).reshape(-1, 10), np.array(cf, dtype=float).reshape(-1, 11)
 
 
 def _exchanges(net, tables):
@@ -286,8 +290,9 @@ def _exchanges(net, tables):
 def _switches(net):
     """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 11/12 a law's kink,
     4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area
-    interval, 10 its turning point, 13 its seat, 14 a kink of the seat's force), their exchanges (a law's kink:
-    j + ne·(row + 1); the seat's kink: its index) and labels, in the order of :meth:`Network.events` (each watched
+    interval, 10 its turning point, 15/16 the knot above/below the piece of the volume spline it holds, 13 its seat,
+    14 a kink of the seat's force), their exchanges (a law's kink: j + ne·(row + 1); a knot: the pushed cavity;
+    the seat's kink: its index) and labels, in the order of :meth:`Network.events` (each watched
     only in its discrete state)."""
     kinds, js, labels = [], [], []
 
@@ -326,6 +331,12 @@ def _switches(net):
             if area[3]:
                 add(9, j, "contact-down")
                 add(8, j, "contact-up")
+        pushed = int(geometry["body"][3])
+        if pushed >= 0 and net.cavities[pushed].name in geometry["volumes"]:  # the knots of its volume spline
+            for kind, what in ((16, "knot-down"), (15, "knot-up")):
+                kinds.append(kind)
+                js.append(pushed)
+                labels.append(f"{net.cavities[pushed].name}:{what}")
     seat = geometry.get("contact")
     if seat is not None:  # the seat switch of hard contact, then the kinks of the seat's force
         name = net.contact.name

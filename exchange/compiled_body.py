@@ -20,7 +20,7 @@ import numpy as np
 from numba import njit
 
 from .compiled_rhs import states
-from .compiled_tables import P, spline_value
+from .compiled_tables import P, spline_piece_value
 from .contact_laws import HARD, held_side, seat_force
 
 __all__ = ["body_force", "body_rhs", "HAS", "HELD", "SCALE", "LAW", "is_held", "contact_force",
@@ -39,7 +39,7 @@ def body_force(y, ci, tx, ty, ti, st, amb, bd):
     force = 0.0
     pushed, other = int(bd[3]), int(bd[4])
     if pushed >= 0:
-        force += (st[pushed, P] - amb[0]) * spline_value(tx, ty, ti, ci[pushed, 3], s)[1]
+        force += (st[pushed, P] - amb[0]) * spline_piece_value(tx, ty, ti, ci[pushed, 3], s, ci[pushed, 9])[1]
     if other >= 0:
         force += (st[other, P] - amb[0]) * bd[5]
     return force - bd[7] - bd[6] * s

@@ -9,7 +9,8 @@ has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`
 kinds: 0 choke, 1 one-way reversal, 2 equalise, 3 release, 4 pop, 5 pop-drop, 6 pop-hold, 7 orifice join, 8/9 the
 dynamic body reaching the crossing above/below its area interval ``M[23][j]``, 10 its turning point, 11/12 a
 row of a law's Cd table of pressure / leakage table (:mod:`exchange.law_kinks`), 13 the body's seat (hard
-contact: lift-off and impact), 14 a kink of its seat's force (:mod:`exchange.compiled_body`).
+contact: lift-off and impact), 14 a kink of its seat's force (:mod:`exchange.compiled_body`), 15/16 the knot
+above/below the piece of the pushed cavity's volume spline the segment holds (``M[7][i, 9]``).
 """
 from __future__ import annotations
 
@@ -20,8 +21,9 @@ from numba import njit
 
 from .compiled_body import seat_event, seat_switch, seat_watched
 from .compiled_rhs import base_area
+from .lowered_columns import KNOT_SLACK
 
-__all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_intervals"]
+__all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_intervals", "lock_pieces"]
 
 
 @njit(cache=True)
@@ -35,6 +37,9 @@ def watched(M, kind, j):
         return M[23][j] < M[6][M[12][j, 8], 1] - 1
     if kind == 9:
         return M[23][j] > 0
+    if kind == 15 or kind == 16:  # a knot above / below the held piece of cavity j's volume spline exists
+        p = M[7][j, 9]
+        return p < M[6][M[7][j, 3], 1] - 1 if kind == 15 else p >= 0
     if kind >= 10:  # the body's turning point, seat and kinks
         return seat_watched(M, kind)
     if kind == 2 or kind == 3:
@@ -51,7 +56,9 @@ def on_event(M, kind, j, t, y, seg_end):
     """:meth:`Network.on_event`: equalise holds the exchange closed, release opens it; a pop crossing starts the
     hold (or pops at once without a hold time), a drop re-arms, the hold's end pops; a seat switch may change the
     body's state ``y`` in place (:func:`exchange.compiled_body.seat_event`)."""
-    if kind >= 13:
+    if kind == 15 or kind == 16:
+        pass  # a knot only ends the segment: the next one holds the piece beyond (lock_pieces)
+    elif kind >= 13:
         seat_event(M, kind, t, y, seg_end)
     elif kind == 8 or kind == 9:  # the body's displacement passed the crossing: the next area interval
         M[23][j] += 1 if kind == 8 else -1
@@ -86,7 +93,9 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
 @njit(cache=True)
 def body_switch(M, kind, j, y):
     """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
-    of exchange j, and v/v_scale (10) (:meth:`cases.model.scene_areas.GeometricAreas._area_events`)."""
+    of exchange j, on the knot above (15) or below (16) the held piece of cavity j's volume spline, and v/v_scale (10) (:meth:`cases.model.scene_areas.GeometricAreas._area_events`)."""
+    if kind == 15 or kind == 16:
+        return knot_switch(M, kind, j, y)
     if kind >= 13:
         return seat_switch(M, kind, j, y)
     bd = M[24]
@@ -112,3 +121,28 @@ def rederive_intervals(M, y):
         i = iv[j]
         if (i > 0 and s < tx[start + i] - bd[9]) or (i < n and s > tx[start + 1 + i] + bd[9]):
             iv[j] = np.searchsorted(tx[start + 1:start + 1 + n], s, side="right")
+
+
+@njit(cache=True)
+def knot_switch(M, kind, j, y):
+    """(s − x_k)/span of the knot above (kind 15) or below (16) the piece cavity j's volume spline holds
+    (:meth:`cases.model.scene_network.SceneNetwork._knot_events`)."""
+    tx, ti, ci = M[4], M[6], M[7]
+    s, n = ti[ci[j, 3], 0], ti[ci[j, 3], 1]
+    p = ci[j, 9]
+    knot = tx[s + p + 1] if kind == 15 else tx[s + p]
+    return (y[ci[j, 6]] - knot) / (tx[s + n - 1] - tx[s])
+
+
+@njit(cache=True)
+def lock_pieces(M, y):
+    """At a segment start, hold for each volume spline of the dynamic body's displacement the piece holding s,
+    nudged by KNOT_SLACK of its span along the body's velocity (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`)."""
+    tx, ti, ci = M[4], M[6], M[7]
+    for i in range(ci.shape[0]):
+        if ci[i, 2] != 4:
+            continue
+        s, n = ti[ci[i, 3], 0], ti[ci[i, 3], 1]
+        v = y[ci[i, 6] + 1]
+        nudge = KNOT_SLACK * (tx[s + n - 1] - tx[s]) * (1.0 if v > 0.0 else (-1.0 if v < 0.0 else 0.0))
+        ci[i, 9] = np.searchsorted(tx[s:s + n], y[ci[i, 6]] + nudge, side="right") - 1

@@ -21,7 +21,7 @@ from numba import njit, objmode
 from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_FACTOR, N_STAGES, RECORD, SAFETY,
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
-from .compiled_modes import body_switch, on_event, record_segment, rederive_intervals, watched
+from .compiled_modes import body_switch, lock_pieces, on_event, record_segment, rederive_intervals, watched
 from .compiled_body import body_rhs, contact_force, is_held, lifting_side
 from .compiled_rhs import network_rhs, states, switch_value
 from .compiled_sources import kink_value
@@ -293,8 +293,8 @@ def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
     for q in range(nsw):
         if not watched(M, kinds[q], js[q]):
             continue  # the switch of another discrete state
-        if kinds[q] == 8 or kinds[q] == 9:  # the body leaves its interval through that end only
-            d = 1.0 if kinds[q] == 8 else -1.0
+        if kinds[q] == 8 or kinds[q] == 9 or kinds[q] == 15 or kinds[q] == 16:  # it leaves through that end only
+            d = 1.0 if kinds[q] == 8 or kinds[q] == 15 else -1.0
         elif kinds[q] == 10 and lifting_side(M, y) != 0.0:  # freed at rest on its seat: it can only return
             d = -lifting_side(M, y)
         elif q == last_q and t == last_t:
@@ -324,6 +324,7 @@ def begin_segment(M, kinds, js, t, y, seg_end):
     one_k, one_j, val = np.empty(1, np.int64), np.empty(1, np.int64), np.empty(1)
     if M[24][0] >= 0.0:
         rederive_intervals(M, y)
+        lock_pieces(M, y)
     mode = 0
     for j in range(eq.size):
         if ei[j, 5] == 1 and eq[j] == 0:

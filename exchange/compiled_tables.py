@@ -9,6 +9,8 @@ from numba import njit
 
 from cavity.tolerances import R_UNIVERSAL as R_U
 
+from .lowered_columns import UNLOCKED
+
 P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # columns of the state scratch
 
 
@@ -65,6 +67,30 @@ def spline_value(tx, ty, ti, k, x):
 
 
 @njit(cache=True, inline="always")
+def spline_piece_value(tx, ty, ti, k, x, p):
+    """(value, slope) of the cubic spline k at x on its piece p held over the whole segment, extended beyond the
+    piece's knots by one piece width (farther, as :func:`spline_value`: the extended cubic may leave the data
+    there) (−1: below the first knot, the value there and slope 0; n − 1: above the last; UNLOCKED: on the
+    piece holding x, :func:`spline_value`). The switches at the piece's knots end the segment, so a step never
+    straddles a knot's jump in the third derivative (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`)."""
+    if p == UNLOCKED:
+        return spline_value(tx, ty, ti, k, x)
+    s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]
+    if p < 0 or p >= n - 1:
+        i = 0 if p < 0 else n - 2
+        d = 0.0 if p < 0 else tx[s + n - 1] - tx[s + n - 2]
+        q = c + 4 * i
+        return ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3], 0.0
+    w = tx[s + p + 1] - tx[s + p]
+    if x < tx[s + p] - w or x > tx[s + p + 1] + w:  # a trial stage far off (a step to be rejected or cut)
+        return spline_value(tx, ty, ti, k, x)
+    d = x - tx[s + p]
+    q = c + 4 * p
+    return ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3], \
+        (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2]
+
+
+@njit(cache=True, inline="always")
 def side(st, amb, i, c):
     """Column c of the gas point of cavity i, or of ambient (i < 0)."""
     return amb[c] if i < 0 else st[i, c]
@@ -81,8 +107,8 @@ def volume_of(ci, cf, tx, ty, ti, i, t, y):
     k = ci[i, 3]
     if kind == 3:
         return spline_value(tx, ty, ti, k, t)
-    if kind == 4:  # a spline of the dynamic body's displacement y[ci[i, 6]]: dV/dt = dV/ds·v
-        value, slope = spline_value(tx, ty, ti, k, y[ci[i, 6]])
+    if kind == 4:  # a spline of the dynamic body's displacement y[ci[i, 6]] on its held piece: dV/dt = dV/ds·v
+        value, slope = spline_piece_value(tx, ty, ti, k, y[ci[i, 6]], ci[i, 9])
         return value, slope * y[ci[i, 6] + 1]
     if kind == 1:
         return table_value(tx, ty, ti, k, t), table_slope(tx, ty, ti, k, t)

@@ -6,7 +6,15 @@ from __future__ import annotations
 
 from .discharge import PRESSURE, DischargeTable
 
-__all__ = ["law_parameters", "law_tables", "area_at_activation", "liquid"]
+__all__ = ["law_parameters", "law_tables", "area_at_activation", "liquid", "UNLOCKED", "KNOT_SLACK"]
+
+#: ``ci[i, 9]`` of a cavity whose volume spline is evaluated on the piece holding x (no piece held:
+#: :func:`exchange.compiled_tables.spline_piece_value`).
+UNLOCKED = -2
+#: At a segment start the piece of a volume spline of the dynamic body's displacement is the one holding s nudged
+#: by this fraction of the spline's span along the body's motion (after a knot switch s lies on the knot, to
+#: round-off; :meth:`cases.model.wrapped_volume.WrappedVolume.lock`).
+KNOT_SLACK = 1e-9
 
 
 def law_parameters(law) -> tuple:

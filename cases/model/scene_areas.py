@@ -20,6 +20,30 @@ class GeometricAreas:
         super().begin_segment(t0, t1, y0)
         if y0 is not None and self.body is not None:
             self._rederive_intervals(float(y0[self.body_offset]))
+            vol = self._pushed_spline()
+            if vol is not None:
+                vol.lock(float(y0[self.body_offset]), float(y0[self.body_offset + 1]))
+
+    def _pushed_spline(self):
+        """The volume spline of the dynamic body's displacement of the cavity it intrudes into, or None."""
+        if self.body is None or self.pushed is None:
+            return None
+        vol = self.cavities[self.pushed].volume
+        return vol if hasattr(vol, "lock") else None
+
+    def _knot_events(self) -> list:
+        """Switches (s − x_k)/span on the knots bounding the piece of the pushed cavity's volume spline held
+        this segment (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`): s leaves the piece through them."""
+        vol = self._pushed_spline()
+        if vol is None or vol.piece is None:
+            return []
+        below, above, span = vol.knots_around()
+        k, name, out = self.body_offset, self.cavities[self.pushed].name, []
+        if below is not None:
+            out.append(_directed(lambda t, y, c=below: (y[k] - c) / span, f"{name}:knot-down", -1.0))
+        if above is not None:
+            out.append(_directed(lambda t, y, c=above: (y[k] - c) / span, f"{name}:knot-up", 1.0))
+        return out
 
     def _rederive_intervals(self, s: float) -> None:
         """Make each area interval hold the body's displacement s (a crossing passed inside the step of a

@@ -78,6 +78,8 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
         super().reset()
         self.held, self.contact_log, self.lifting = False, [], 0.0
         self.intervals = [None] * len(self.exchanges)
+        if self._pushed_spline() is not None:
+            self._pushed_spline().unlock()
         if self.body is not None:
             self.body_state.s, self.body_state.v = 0.0, self.body.motion.initial_velocity
         for j, ga in enumerate(self.areas):
@@ -154,7 +156,7 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
         out = super().events()
         if self.body is not None and not self.held:
             out += self._turn_event()
-        out += self._area_events()
+        out += self._area_events() + self._knot_events()
         if self.contact is not None:
             out += self._contact_events()
         return out
@@ -163,7 +165,7 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
         name, _, kind = label.rpartition(":")
         if kind == "seat":
             return self._seat_event(t, y)
-        if kind == "turn":
+        if kind == "turn" or kind.startswith("knot-"):  # a knot: the next segment holds the piece beyond
             return y
         if kind.startswith("kink-"):
             self._log_touch(t, y)
@@ -178,6 +180,8 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
         return super().snapshot(), tuple(self.intervals), self.held
 
     def restore(self, mode):
+        if self._pushed_spline() is not None:  # outputs read the volume on the piece holding s
+            self._pushed_spline().unlock()
         if mode is not None:
             super().restore(mode[0])
             self.intervals, self.held = list(mode[1]), mode[2]
