@@ -331,12 +331,7 @@ def _switches(net):
             if area[3]:
                 add(9, j, "contact-down")
                 add(8, j, "contact-up")
-        pushed = int(geometry["body"][3])
-        if pushed >= 0 and net.cavities[pushed].name in geometry["volumes"]:  # the knots of its volume spline
-            for kind, what in ((16, "knot-down"), (15, "knot-up")):
-                kinds.append(kind)
-                js.append(pushed)
-                labels.append(f"{net.cavities[pushed].name}:{what}")
+        _knot_switches(net, geometry, kinds, js, labels)
     seat = geometry.get("contact")
     if seat is not None:  # the seat switch of hard contact, then the kinks of the seat's force
         name = net.contact.name
@@ -348,6 +343,16 @@ def _switches(net):
             js.append(j)
             labels.append(label)
     return np.array(kinds, dtype=np.int64), np.array(js, dtype=np.int64), labels
+
+
+def _knot_switches(net, geometry, kinds, js, labels) -> None:
+    """The knots below/above (16/15) the held piece of the pushed cavity's volume spline of the body's displacement."""
+    pushed = int(geometry["body"][3])
+    if pushed >= 0 and net.cavities[pushed].name in geometry["volumes"]:
+        for kind, what in ((16, "knot-down"), (15, "knot-up")):
+            kinds.append(kind)
+            js.append(pushed)
+            labels.append(f"{net.cavities[pushed].name}:{what}")
 
 
 def _body(net) -> np.ndarray:

@@ -169,44 +169,8 @@ class AreaTrack:
         return float(leak_area(self.total_area * s2, 0.0, self.effective_area, self.permeability))
 
     def smallest_area(self, lo: float, hi: float, extra=()) -> tuple:
-        """(area [m^2], θ, interval) of the smallest leakage area over [lo, hi].
-
-        Constant on each interval at fixed face areas: the smallest interval value, at the interval's start. With a
-        mesh scale s(θ) (piecewise linear) or a vertex trajectory the area also changes inside an interval: the
-        candidates are both sides of every crossing, the scale's knots, the frames and ``extra`` (e.g. output
-        times); a bounded Brent search (scipy's ``minimize_scalar``) then refines the best one between its
-        neighbouring candidates (the area of moving faces is smooth between frames)."""
-        inside = self.crossings[(self.crossings > lo) & (self.crossings <= hi)]
-        if self.moving is None and self.scale is None:
-            first = self.interval(lo)
-            areas = self.areas[first:first + len(inside) + 1]
-            k = int(np.argmin(areas))
-            return float(areas[k]), float(lo if k == 0 else inside[k - 1]), first + k
-        knots = np.asarray(self.scale.x, dtype=float) if self.scale is not None else np.zeros(0)
-        pts = np.unique(np.concatenate([[lo, hi], inside, knots, self.frame_times, np.asarray(extra, dtype=float)]))
-        pts = pts[(pts >= lo) & (pts <= hi)]
-        best, crossing = (np.inf, lo, 0, 0), set(inside.tolist())
-        for q, theta in enumerate(pts):  # the right limit at θ and, at a crossing, the left limit
-            i = self.interval(theta)
-            for side in ((i, i - 1) if theta in crossing and i > 0 else (i,)):
-                a = self.area_in(side, theta)
-                if a < best[0]:
-                    best = (a, float(theta), side, q)
-        return self._refined(best, pts)
-
-    def _refined(self, best: tuple, pts: np.ndarray) -> tuple:
-        from scipy.optimize import minimize_scalar
-
-        area, theta, i, q = best
-        for a, b in ((pts[q - 1] if q else None, theta), (theta, pts[q + 1] if q + 1 < len(pts) else None)):
-            if a is None or b is None or not b > a:
-                continue
-            mid = self.interval(0.5 * (a + b))
-            res = minimize_scalar(lambda x: self.area_in(mid, x), bounds=(a, b), method="bounded",
-                                  options={"xatol": 1e-12 * max(self.span, abs(b)), "maxiter": 200})
-            if res.fun < area:
-                area, theta, i = float(res.fun), float(res.x), mid
-        return area, theta, i
+        """(area [m^2], θ, interval) of the smallest leakage area over [lo, hi] (:func:`smallest_area`)."""
+        return smallest_area(self, lo, hi, extra)
 
     @property
     def frame_times(self) -> np.ndarray:
@@ -222,3 +186,45 @@ class AreaTrack:
         moving = pack(times, area_coefficients(times, vertices, faces, face_sizes), faces, face_sizes, src.initial,
                       self.applied, src.node, delta, self.effective_area, self.permeability)
         return replace(self, moving=moving)
+
+
+def smallest_area(track: AreaTrack, lo: float, hi: float, extra=()) -> tuple:
+    """(area [m^2], θ, interval) of the smallest leakage area of ``track`` over [lo, hi].
+
+    Constant on each interval at fixed face areas: the smallest interval value, at the interval's start. With a
+    mesh scale s(θ) (piecewise linear) or a vertex trajectory the area also changes inside an interval: the
+    candidates are both sides of every crossing, the scale's knots, the frames and ``extra`` (e.g. output
+    times); a bounded Brent search (scipy's ``minimize_scalar``) then refines the best one between its
+    neighbouring candidates (the area of moving faces is smooth between frames)."""
+    inside = track.crossings[(track.crossings > lo) & (track.crossings <= hi)]
+    if track.moving is None and track.scale is None:
+        first = track.interval(lo)
+        areas = track.areas[first:first + len(inside) + 1]
+        k = int(np.argmin(areas))
+        return float(areas[k]), float(lo if k == 0 else inside[k - 1]), first + k
+    knots = np.asarray(track.scale.x, dtype=float) if track.scale is not None else np.zeros(0)
+    pts = np.unique(np.concatenate([[lo, hi], inside, knots, track.frame_times, np.asarray(extra, dtype=float)]))
+    pts = pts[(pts >= lo) & (pts <= hi)]
+    best, crossing = (np.inf, lo, 0, 0), set(inside.tolist())
+    for q, theta in enumerate(pts):  # the right limit at θ and, at a crossing, the left limit
+        i = track.interval(theta)
+        for side in ((i, i - 1) if theta in crossing and i > 0 else (i,)):
+            a = track.area_in(side, theta)
+            if a < best[0]:
+                best = (a, float(theta), side, q)
+    return _refined(track, best, pts)
+
+
+def _refined(track: AreaTrack, best: tuple, pts: np.ndarray) -> tuple:
+    from scipy.optimize import minimize_scalar
+
+    area, theta, i, q = best
+    for a, b in ((pts[q - 1] if q else None, theta), (theta, pts[q + 1] if q + 1 < len(pts) else None)):
+        if a is None or b is None or not b > a:
+            continue
+        mid = track.interval(0.5 * (a + b))
+        res = minimize_scalar(lambda x: track.area_in(mid, x), bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-12 * max(track.span, abs(b)), "maxiter": 200})
+        if res.fun < area:
+            area, theta, i = float(res.fun), float(res.x), mid
+    return area, theta, i
