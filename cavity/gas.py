@@ -52,7 +52,7 @@ class Mixture:
         self.breaks = breaks
         self._rows = rows
         self._moles_by_species = _moles_by_species  # list (ns,) [mol], with _model: rows are computed lazily
-        self._model = _model  # GasModel._per_range: per-range per-species rows, "cp is constant" flags, arrays
+        self._model = _model  # GasModel._per_range: per-range per-species rows; rows (ns, nr, 7), flags, breaks
         self._index = -1
         self._current = None
 
@@ -130,7 +130,7 @@ class Mixture:
         U(T) is strictly increasing (Cv > 0) over the data, so the damped Newton converges from any positive guess
         in a few steps; where cp is constant over a range the step lands on the root at once.
         """
-        table, linear, breaks = self._model[2:]
+        table, linear, breaks = self._model[1:]
         T, _ = row_temperature(table, breaks, linear, np.asarray(self._moles_by_species), self.moles, float(U),
                                float(T_guess), np.empty(7))
         if not T == T:
@@ -160,7 +160,6 @@ class GasModel:
     species: tuple[Species, ...]
     molar_masses: np.ndarray = field(init=False, repr=False, compare=False)
     breaks: tuple = field(init=False, repr=False, compare=False)
-    _table: np.ndarray = field(init=False, repr=False, compare=False)
     _per_range: tuple = field(init=False, repr=False, compare=False)
     _molar_mass_list: tuple = field(init=False, repr=False, compare=False)
 
@@ -174,14 +173,13 @@ class GasModel:
         table = np.array([_species_rows(s, breaks) for s in self.species])  # (ns, nr, 7), per mole
         object.__setattr__(self, "species", tuple(self.species))
         object.__setattr__(self, "breaks", breaks)
-        object.__setattr__(self, "_table", table.reshape(len(self.species), -1))
         object.__setattr__(self, "molar_masses", np.array([s.molar_mass for s in self.species]))
-        # Per range: the per-species rows as Python floats, and whether cp is constant there for every species
-        # (b..f all zero), which makes U linear in T; used by Mixture to build only the rows it needs.
+        # Per range the per-species rows as Python floats (Mixture builds only the rows it needs); the rows as one
+        # array, per range 1 where cp is constant for every species (b..f all zero: U linear in T), and the breaks
+        # (the temperature solver, cavity.gas_rows.temperature, and the compiled path read these).
         per_range = [table[:, i, :].tolist() for i in range(table.shape[1])]
-        linear = tuple(bool(np.all(table[:, i, 1:6] == 0.0)) for i in range(table.shape[1]))
-        object.__setattr__(self, "_per_range", (per_range, linear, table, np.array(linear, dtype=np.int64),
-                                                np.array(breaks, dtype=float)))
+        linear = np.all(table[:, :, 1:6] == 0.0, axis=(0, 2)).astype(np.int64)
+        object.__setattr__(self, "_per_range", (per_range, table, linear, np.array(breaks, dtype=float)))
         object.__setattr__(self, "_molar_mass_list", tuple(float(s.molar_mass) for s in self.species))
 
     @property

@@ -376,7 +376,7 @@ def lower(net) -> CompiledNetwork | None:
         purge_stale()
         _CACHE_CHECKED.append(True)
     gas = net.gas
-    _, _, rows, linear, breaks = gas._per_range  # rows (ns, nr, 7) per mole; int flags and breaks as Mixture's
+    _, rows, linear, breaks = gas._per_range  # rows (ns, nr, 7) per mole; int flags and breaks as Mixture's
     ns, nr = rows.shape[0], rows.shape[1]
     tables = _Tables()
     ci, cf = _cavities(net, tables)

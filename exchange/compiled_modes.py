@@ -93,7 +93,8 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
 @njit(cache=True)
 def body_switch(M, kind, j, y):
     """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
-    of exchange j, on the knot above (15) or below (16) the held piece of cavity j's volume spline, and v/v_scale (10) (:meth:`cases.model.scene_areas.GeometricAreas._area_events`)."""
+    of exchange j, on the knot above (15) or below (16) the held piece of cavity j's volume spline, and
+    v/v_scale (10) (:meth:`cases.model.scene_areas.GeometricAreas._area_events`)."""
     if kind == 15 or kind == 16:
         return knot_switch(M, kind, j, y)
     if kind >= 13:
@@ -137,12 +138,13 @@ def knot_switch(M, kind, j, y):
 @njit(cache=True)
 def lock_pieces(M, y):
     """At a segment start, hold for each volume spline of the dynamic body's displacement the piece holding s,
-    nudged by KNOT_SLACK of its span along the body's velocity (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`)."""
+    nudged by KNOT_SLACK of its span along the body's velocity
+    (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`)."""
     tx, ti, ci = M[4], M[6], M[7]
     for i in range(ci.shape[0]):
         if ci[i, 2] != 4:
             continue
         s, n = ti[ci[i, 3], 0], ti[ci[i, 3], 1]
         v = y[ci[i, 6] + 1]
-        nudge = KNOT_SLACK * (tx[s + n - 1] - tx[s]) * (1.0 if v > 0.0 else (-1.0 if v < 0.0 else 0.0))
+        nudge = KNOT_SLACK * (tx[s + n - 1] - tx[s]) * np.sign(v)
         ci[i, 9] = np.searchsorted(tx[s:s + n], y[ci[i, 6]] + nudge, side="right") - 1

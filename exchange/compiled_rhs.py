@@ -50,7 +50,6 @@ from blockage.moving_area import moving_leak_area
 from cavity.gas_rows import mixture_row, range_of, row_cp, row_enthalpy, temperature
 
 from .compiled_sources import inflator_flow, law_flow, liquid_state, prescribed_flow
-
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, spline_value, step_value,
                               table_value, eos_volume)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE

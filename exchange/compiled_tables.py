@@ -1,6 +1,6 @@
 """The lowest kernels of the compiled path: tables (piecewise linear, steps, cubic splines), volumes and the
-columns of the state scratch (the gas's rows: :mod:`cavity.gas_rows`); shared by :mod:`exchange.compiled_rhs` and :mod:`exchange.compiled_sources`
-(array layout: :mod:`exchange.compiled_rhs`). Each mirrors the Python method named in its docstring.
+columns of the state scratch (the gas's rows: :mod:`cavity.gas_rows`); shared by :mod:`exchange.compiled_rhs`
+and :mod:`exchange.compiled_sources` (array layout: :mod:`exchange.compiled_rhs`). Each mirrors the Python method named in its docstring.
 """
 from __future__ import annotations
 
@@ -59,11 +59,14 @@ def spline_value(tx, ty, ti, k, x):
     inside = tx[s] <= x <= tx[s + n - 1]
     x = min(max(x, tx[s]), tx[s + n - 1])
     i = min(max(np.searchsorted(tx[s:s + n], x, side="right") - 1, 0), n - 2)
-    d = x - tx[s + i]
-    q = c + 4 * i
-    value = ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3]
-    slope = (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2] if inside else 0.0
-    return value, slope
+    value, slope = _cubic(ty, c + 4 * i, x - tx[s + i])
+    return value, slope if inside else 0.0
+
+
+@njit(cache=True, inline="always")
+def _cubic(ty, q, d):
+    """(value, slope) of the cubic piece whose coefficients (highest power first) start at ty[q], d past its knot."""
+    return ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3], (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2]
 
 
 @njit(cache=True, inline="always")
@@ -76,18 +79,12 @@ def spline_piece_value(tx, ty, ti, k, x, p):
     if p == UNLOCKED:
         return spline_value(tx, ty, ti, k, x)
     s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]
-    if p < 0 or p >= n - 1:
-        i = 0 if p < 0 else n - 2
-        d = 0.0 if p < 0 else tx[s + n - 1] - tx[s + n - 2]
-        q = c + 4 * i
-        return ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3], 0.0
+    if p < 0 or p >= n - 1:  # held at the end knot
+        return spline_value(tx, ty, ti, k, tx[s] if p < 0 else tx[s + n - 1])[0], 0.0
     w = tx[s + p + 1] - tx[s + p]
     if x < tx[s + p] - w or x > tx[s + p + 1] + w:  # a trial stage far off (a step to be rejected or cut)
         return spline_value(tx, ty, ti, k, x)
-    d = x - tx[s + p]
-    q = c + 4 * p
-    return ((ty[q] * d + ty[q + 1]) * d + ty[q + 2]) * d + ty[q + 3], \
-        (3.0 * ty[q] * d + 2.0 * ty[q + 1]) * d + ty[q + 2]
+    return _cubic(ty, c + 4 * p, x - tx[s + p])
 
 
 @njit(cache=True, inline="always")

@@ -31,6 +31,11 @@ class GeometricAreas:
         vol = self.cavities[self.pushed].volume
         return vol if hasattr(vol, "lock") else None
 
+    def _unlock_spline(self) -> None:
+        vol = self._pushed_spline()
+        if vol is not None:
+            vol.unlock()
+
     def _knot_events(self) -> list:
         """Switches (s − x_k)/span on the knots bounding the piece of the pushed cavity's volume spline held
         this segment (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`): s leaves the piece through them."""

@@ -78,8 +78,7 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
         super().reset()
         self.held, self.contact_log, self.lifting = False, [], 0.0
         self.intervals = [None] * len(self.exchanges)
-        if self._pushed_spline() is not None:
-            self._pushed_spline().unlock()
+        self._unlock_spline()
         if self.body is not None:
             self.body_state.s, self.body_state.v = 0.0, self.body.motion.initial_velocity
         for j, ga in enumerate(self.areas):
@@ -180,8 +179,7 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
         return super().snapshot(), tuple(self.intervals), self.held
 
     def restore(self, mode):
-        if self._pushed_spline() is not None:  # outputs read the volume on the piece holding s
-            self._pushed_spline().unlock()
+        self._unlock_spline()  # outputs read the volume on the piece holding s
         if mode is not None:
             super().restore(mode[0])
             self.intervals, self.held = list(mode[1]), mode[2]

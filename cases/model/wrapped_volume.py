@@ -79,12 +79,18 @@ class WrappedVolume:
     def at(self, theta: float) -> float:
         if self.piece is not None:
             return self._on_piece(theta)[0]
-        return float(self.spline(min(max(theta, self.lo), self.hi)))
+        return self._spline_at(theta)
 
     def slope(self, theta: float) -> float:
         """dV/dθ (0 outside the sampled range, where nothing touches)."""
         if self.piece is not None:
             return self._on_piece(theta)[1]
+        return self._spline_slope(theta)
+
+    def _spline_at(self, theta: float) -> float:
+        return float(self.spline(min(max(theta, self.lo), self.hi)))
+
+    def _spline_slope(self, theta: float) -> float:
         return float(self.spline(theta, 1)) if self.lo <= theta <= self.hi else 0.0
 
     def lock(self, theta: float, rate: float) -> None:
@@ -107,22 +113,16 @@ class WrappedVolume:
                 float(x[-1] - x[0]))
 
     def _on_piece(self, theta: float) -> tuple:
-        """(V, dV/dθ) on the held piece (extended by one piece width; farther, the spline), in the arithmetic of
+        """(V, dV/dθ) on the held piece (extended by one piece width; farther, the spline), as
         :func:`exchange.compiled_tables.spline_piece_value`."""
-        x, c, p = self.spline.x, self.spline.c, self.piece
-        if p < 0 or p >= len(x) - 1:
-            i = 0 if p < 0 else len(x) - 2
-            d = 0.0 if p < 0 else float(x[-1] - x[-2])
-            return float(((c[0, i] * d + c[1, i]) * d + c[2, i]) * d + c[3, i]), 0.0
+        x, p = self.spline.x, self.piece
+        if p < 0 or p >= len(x) - 1:  # held at the end knot
+            return self._spline_at(x[0] if p < 0 else x[-1]), 0.0
         w = float(x[p + 1] - x[p])
         if theta < x[p] - w or theta > x[p + 1] + w:  # a trial stage far off: the spline itself
-            piece, self.piece = self.piece, None
-            try:
-                return self.at(theta), self.slope(theta)
-            finally:
-                self.piece = piece
-        d = theta - float(x[p])
-        return float(((c[0, p] * d + c[1, p]) * d + c[2, p]) * d + c[3, p]),             float((3.0 * c[0, p] * d + 2.0 * c[1, p]) * d + c[2, p])
+            return self._spline_at(theta), self._spline_slope(theta)
+        c, d = self.spline.c[:, p], theta - float(x[p])
+        return float(((c[0] * d + c[1]) * d + c[2]) * d + c[3]), float((3.0 * c[0] * d + 2.0 * c[1]) * d + c[2])
 
     def __call__(self, t: float) -> float:
         return self.at(self.theta_of(t))
