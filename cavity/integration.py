@@ -187,8 +187,7 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
         exc = SolverError({1: f"more than {options.max_steps} steps before t = {t:.9g} s; {state}{stiff}",
                            2: f"DOP853 stopped at t = {t:.9g} s: Required step size is less than spacing between "
                               f"numbers.; {state}{stiff}",
-                           3: f"the right-hand side failed near t = {t:.9g} s (no temperature found for a "
-                              f"cavity's internal energy); {state}",
+                           3: f"the right-hand side failed near t = {t:.9g} s ({_failure(fast)}); {state}",
                            4: f"non-finite state at t = {t:.9g} s; {state}",
                            5: f"switches keep firing at t = {t:.9g} s without progress; {state}",
                            6: f"more than max_wall = {options.max_wall:g} s of wall time before t = {t:.9g} s; "
@@ -196,6 +195,12 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
         exc.trajectory = _compiled_trajectory(system, fast, t0, recs, segs, evs, st) if len(segs) else None
         raise exc
     return _compiled_trajectory(system, fast, t0, recs, segs, evs, st)
+
+
+def _failure(fast) -> str:
+    """Why the compiled right-hand side failed (the lowered system's ``failure()``, if it says)."""
+    failure = getattr(fast, "failure", None)
+    return failure() if failure is not None else "no temperature found for a cavity's internal energy"
 
 
 def _compiled_trajectory(system, fast, t0, recs, segs, evs, st) -> Trajectory:

@@ -192,7 +192,8 @@ ABAQUS_AIR = Species("air", 0.0289, (28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0)
 def species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple[float, float] | None = None,
                           width: float = 100.0) -> Species:
     """:func:`fit_species_from_coolprop`, looked up first in the fit cache (:mod:`cavity.species_fits`: shipped
-    fits of the built-in species, then the user cache), which a fresh fit fills; equal to a fresh fit bit for bit."""
+    fits of the built-in species, then the user cache), which a fresh fit fills; equal to a fresh fit bit for bit on
+    the machine that cached it, elsewhere in cp(T) to round-off (another LAPACK orders the least squares otherwise)."""
     from . import species_fits
 
     fluid = BUILTIN_COOLPROP_NAMES.get(name, name)

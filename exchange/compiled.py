@@ -3,12 +3,14 @@
 :func:`lower` returns a :class:`CompiledNetwork` when every part of the network is of a supported kind, else
 ``None`` with the reason in :func:`unsupported_reason`; :func:`cavity.integration.integrate` then runs the Python
 path. Supported: a plain ``Network`` or a scene network that lowers its geometry, ideal-gas mixtures with
-piecewise cp polynomials, adiabatic, isothermal or heat-loss gas cavities and hydraulic cavities (without
-inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table, tank-test, pressure-and-mass and
+piecewise cp polynomials, adiabatic, isothermal or heat-loss gas cavities, real-gas cavities (adiabatic, heat
+loss or a wall) and hydraulic cavities (without inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table, tank-test, pressure-and-mass and
 dual-pressure inflators, exchanges to ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance,
 leakage-table (mass or volume rate), prescribed-flux (mass or volume) or bulk-viscosity law, a constant Cd or a
 Cd table of upstream pressure or time, with an optional time window, amplitude table, pop pressure with hold time
-and DELTA LEAKAGE AREA.
+and DELTA LEAKAGE AREA; any other law with ``mass_flow(up, p_down, area, t)`` (the real-gas nozzle, a user's
+law). A real-gas cavity's equation of state and wall and the laws outside that list stay Python objects that the
+compiled kernels call (:mod:`exchange.hosted`); the rest is compiled.
 
 The arrays are described in :mod:`exchange.compiled_rhs`.
 """
@@ -24,16 +26,19 @@ import numpy as np
 
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 
-from . import laws
 from .compiled_contact import event_states, seat_arrays
 from .compiled_inflators import INFLATOR_KINDS, lower_inflators, warn_clamped
-from .discharge import DischargeTable
+from .hosted import host_of, is_hosted_law, register
 from .law_kinks import dp_kinks, pressure_kinks
-from .lowered_columns import UNLOCKED, area_at_activation, law_parameters, law_tables, liquid as liquid_columns
+from .lowered_columns import (UNLOCKED, Tables, area_at_activation, law_parameters, law_tables,
+                              liquid as liquid_columns, spline_entry)
 
 __all__ = ["CompiledNetwork", "lower", "unsupported_reason"]
 
 ENERGY = {"adiabatic": 0, "isothermal": 1, "heat_loss": 2}
+#: energy codes of a real-gas cavity (``ci[i, 1]``; 3: a wall, its heat flows hosted)
+REAL_GAS_ENERGY = {"adiabatic": 0, "heat_loss": 2, "wall": 3}
+HOSTED_LAW = 7  # ``ei[j, 7]`` of a law the compiled path calls in Python (exchange.hosted)
 #: law class of :mod:`exchange.laws` -> kind code in ``ei[:, 7]`` (:func:`exchange.compiled_rhs.law_flow`)
 LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResistanceLaw": 3, "LeakageTableLaw": 4,
              "FluxLaw": 5, "BulkViscosityLaw": 6}
@@ -49,6 +54,7 @@ class CompiledNetwork:
     labels: list
     T_initial: np.ndarray
     network: object
+    host: int = -1  # its id in exchange.hosted (−1: no hosted parts)
     _modes: dict = field(default_factory=dict, repr=False)
     _run_modes: list = field(default_factory=list, repr=False)
 
@@ -62,6 +68,8 @@ class CompiledNetwork:
         _announce_compilation(solve)
         model, net = self.model, self.network
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
+        if self.host >= 0:
+            host_of(self.host).error = None
         self._load_discrete_state()
         y0 = np.asarray(y0, dtype=float)
         if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
@@ -93,10 +101,18 @@ class CompiledNetwork:
             y = np.ascontiguousarray(y, dtype=float)  # one specialisation: solve_ivp passes views at times
             out = np.empty_like(y)
             if not rhs(model, float(t), y, out, seg_end):
-                raise ArithmeticError(f"the gas temperature solve failed at t = {t:.9g} s")
+                raise ArithmeticError(f"at t = {t:.9g} s: {self.failure()}")
             warn_clamped(net, model[9])
             return out
         return f
+
+    def failure(self) -> str:
+        """Why the latest right-hand side failed: a hosted part's exception (:mod:`exchange.hosted`), else no
+        temperature for a cavity's internal energy."""
+        error = host_of(self.host).error if self.host >= 0 else None
+        if error is not None:
+            return f"{type(error).__name__}: {error}"
+        return "no temperature found for a cavity's internal energy"
 
     def _load_discrete_state(self) -> None:
         """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
@@ -182,7 +198,8 @@ def unsupported_reason(net) -> str | None:
         kind = getattr(cav, "kind", "gas")
         if kind == "hydraulic" and cav.inflators:
             return f"cavity {cav.name}: a hydraulic cavity with inflators"
-        if kind not in ("gas", "hydraulic") or (kind == "gas" and cav.energy not in ENERGY):
+        if kind not in ("gas", "hydraulic", "realgas") or (kind == "gas" and cav.energy not in ENERGY) \
+                or (kind == "realgas" and cav.energy not in REAL_GAS_ENERGY):
             return f"cavity {cav.name}: kind or energy model"
         if not isinstance(cav.volume, (FixedVolume, TableVolume, ScaledMeshVolume)) and not _splined(net, cav):
             return f"cavity {cav.name}: volume model {type(cav.volume).__name__}"
@@ -190,11 +207,15 @@ def unsupported_reason(net) -> str | None:
             if type(inf) not in INFLATOR_KINDS or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
                 return f"inflator {inf.name}: {type(inf).__name__}"
     for ex in net.exchanges:
-        law = type(ex.law).__name__
-        if law not in LAW_KINDS or type(ex.law) is not getattr(laws, law) \
-                or not isinstance(getattr(ex.law, "discharge_coefficient", 1.0), (int, float, DischargeTable)):
-            return f"exchange {ex.name}: law {law} (only {', '.join(LAW_KINDS)})"
+        if is_hosted_law(ex.law, LAW_KINDS) and not callable(getattr(ex.law, "mass_flow", None)):
+            return f"exchange {ex.name}: law {type(ex.law).__name__} has no mass_flow(up, p_down, area, t)"
     return None
+
+
+def has_hosted_parts(net) -> bool:
+    """A real-gas cavity or a law the compiled path calls in Python (:mod:`exchange.hosted`)."""
+    return any(getattr(c, "kind", "gas") == "realgas" for c in net.cavities) \
+        or any(is_hosted_law(ex.law, LAW_KINDS) for ex in net.exchanges)
 
 
 def _geometry(net) -> dict:
@@ -209,38 +230,7 @@ def _splined(net, cav) -> bool:
     return cav.name in _geometry(net).get("volumes", {})
 
 
-class _Tables:
-    def __init__(self):
-        self.x, self.y, self.index, self.size = [], [], [], 0
-
-    def add(self, table) -> int:
-        x, y = np.asarray(table.x, dtype=float).ravel(), np.asarray(table.y, dtype=float).ravel()
-        self.index.append((self.size, len(x), 1 if table.extrapolation == "linear" else 0))
-        self.x.append(x)
-        self.y.append(y)
-        self.size += len(x)
-        return len(self.index) - 1
-
-    def add_arrays(self, x, y) -> int:
-        """A raw entry (x and y of equal length), e.g. the steps of an area or the knots of a spline."""
-        return self.add(type("T", (), {"x": x, "y": y, "extrapolation": "constant"})())
-
-    def arrays(self):
-        if not self.index:
-            self.add(type("T", (), {"x": (0.0,), "y": (0.0,), "extrapolation": "constant"})())
-        return (np.concatenate(self.x), np.concatenate(self.y), np.array(self.index, dtype=np.int64).reshape(-1, 3))
-
-
-def _spline_entry(tables, knots, coefficients) -> int:
-    """Knots (table k, their values unused) and coefficients (table k + 1, 4 per piece) of a cubic spline."""
-    knots = np.asarray(knots, dtype=float)
-    k = tables.add_arrays(knots, np.zeros(len(knots)))
-    flat = np.asarray(coefficients, dtype=float).T.ravel()
-    tables.add_arrays(np.zeros(len(flat)), flat)
-    return k
-
-
-def _cavities(net, tables):
+def _cavities(net, tables, host):
     ci, cf = [], []
     splines = _geometry(net).get("volumes", {})
     for cav, k, c in zip(net.cavities, net.offsets, net._ledger):
@@ -248,19 +238,20 @@ def _cavities(net, tables):
         kind = (4 if splines[cav.name][2] else 3) if cav.name in splines else 0 if isinstance(vol, FixedVolume) \
             else 1 if isinstance(vol, TableVolume) else 2
         tab = tables.add(vol.table) if kind == 1 else tables.add(vol.scale) if kind == 2 else \
-            _spline_entry(tables, *splines[cav.name][:2]) if kind >= 3 else -1
+            spline_entry(tables, *splines[cav.name][:2]) if kind >= 3 else -1
         size = vol.volume if kind == 0 else vol.mesh_volume if kind == 2 else 0.0
-        liquid = getattr(cav, "kind", "gas") == "hydraulic"
+        liquid, real = (getattr(cav, "kind", "gas") == k for k in ("hydraulic", "realgas"))
         hA = 0.0 if liquid else cav.heat_transfer_coefficient * cav.heat_transfer_area
-        ci.append((k, 1 if liquid else ENERGY[cav.energy], kind, tab, c, len(cav.initial_masses),
-                   int(_geometry(net)["body"][0]) if kind == 4 else -1, int(liquid),
-                   tables.add(cav.temperature) if liquid else -1, UNLOCKED))
+        energy = 1 if liquid else REAL_GAS_ENERGY[cav.energy] if real else ENERGY[cav.energy]
+        ci.append((k, energy, kind, tab, c, len(cav.initial_masses),
+                   int(_geometry(net)["body"][0]) if kind == 4 else -1, 2 if real else int(liquid),
+                   tables.add(cav.temperature) if liquid else host if real else -1, UNLOCKED))
         cf.append((cav.initial_temperature, cav.added_volume, cav.minimum_volume, hA,
                    0.0 if liquid else cav.ambient_temperature, size) + liquid_columns(cav))
     return np.array(ci, dtype=np.int64).reshape(-1, 10), np.array(cf, dtype=float).reshape(-1, 11)
 
 
-def _exchanges(net, tables):
+def _exchanges(net, tables, host):
     ei, ef = [], []
     geometric = _geometry(net).get("areas", {})
     for j, ex in enumerate(net.exchanges):
@@ -268,7 +259,8 @@ def _exchanges(net, tables):
         amp = tables.add(act.amplitude) if act is not None and act.amplitude is not None else -1
         window = act is not None
         pop = window and act.pop_pressure is not None
-        cd, p1, p2 = law_parameters(ex.law)
+        hosted = is_hosted_law(ex.law, LAW_KINDS)
+        cd, p1, p2 = (1.0, float(bool(ex.law.prescribed)), 0.0) if hosted else law_parameters(ex.law)
         steps, scale, kind, switch_scale = -1, -1, 0, 1.0
         if j in geometric:
             x, y, scale_table, by_displacement, switch_scale, moving = geometric[j]
@@ -277,9 +269,11 @@ def _exchanges(net, tables):
                 tables.add_arrays(np.zeros(len(moving)), moving)
             scale = tables.add(scale_table) if scale_table is not None else -1
             kind = 3 if moving is not None else 2 if by_displacement else 1
+        law_table, cd_table, cd_variable = law_tables(ex.law, tables)
         ei.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amp,
-                   int(window), int(net.can_equalise(len(ei))), int(pop), LAW_KINDS[type(ex.law).__name__], steps,
-                   scale, kind) + law_tables(ex.law, tables))
+                   int(window), int(net.can_equalise(len(ei))), int(pop),
+                   HOSTED_LAW if hosted else LAW_KINDS[type(ex.law).__name__], steps, scale, kind,
+                   host if hosted else law_table, cd_table, cd_variable))
         ef.append((ex.area, cd, act.open_time if window else 0.0, act.close_time if window else math.inf,
                    act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2, switch_scale,
                    area_at_activation(net, j)))
@@ -378,10 +372,11 @@ def lower(net) -> CompiledNetwork | None:
     gas = net.gas
     _, rows, linear, breaks = gas._per_range  # rows (ns, nr, 7) per mole; int flags and breaks as Mixture's
     ns, nr = rows.shape[0], rows.shape[1]
-    tables = _Tables()
-    ci, cf = _cavities(net, tables)
+    tables = Tables()
+    host = register(net) if has_hosted_parts(net) else -1
+    ci, cf = _cavities(net, tables, host)
     ii, ifl, irows = lower_inflators(net, tables, ns, nr)
-    ei, ef = _exchanges(net, tables)
+    ei, ef = _exchanges(net, tables, host)
     tx, ty, ti = tables.arrays()
     a = net.ambient.point()
     amb = np.array([a.p, a.T, a.rho, a.R, a.gamma, a.h] + list(np.asarray(a.mass_fractions, dtype=float)))
@@ -394,4 +389,4 @@ def lower(net) -> CompiledNetwork | None:
              np.full(len(net.exchanges), np.nan), np.zeros(len(net.exchanges), dtype=np.int64), _body(net)) \
         + seat_arrays(_geometry(net).get("contact"))
     kinds, js, labels = _switches(net)
-    return CompiledNetwork(model, kinds, js, labels, T0, net)
+    return CompiledNetwork(model, kinds, js, labels, T0, net, host)

@@ -30,7 +30,7 @@ def _tables(inf, kind: int) -> tuple:
 def lower_inflators(net, tables, ns: int, nr: int) -> tuple:
     """``ii`` (cavity, first table, second table, kind, clamped flag), ``if_`` (start, scale, gas mass, mass
     fractions, tank volume, gas moles, orifice area, Cd) and ``irows`` of the inflators (:mod:`exchange.compiled_rhs`),
-    in the order of the cavities and their inflators; ``tables`` is the :class:`exchange.compiled._Tables` being
+    in the order of the cavities and their inflators; ``tables`` is the :class:`exchange.lowered_columns.Tables` being
     filled."""
     ii, ifl, irows = [], [], []
     for i, cav in enumerate(net.cavities):

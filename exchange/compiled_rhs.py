@@ -14,9 +14,11 @@ Array layout (built by :func:`exchange.compiled.lower`):
 - gas: ``rows`` (ns, nr, 7) per-mole coefficients (a, b, c, d, e, f, H offset) per species and range,
   ``breaks`` (nr − 1,) [K], ``linear`` (nr,) 1 where every species has a constant cp, ``M`` (ns,) [kg/mol];
 - tables: ``tx``, ``ty`` concatenated; ``ti`` (ntab, 3): first row, rows, 1 for linear extrapolation;
-- cavities ``ci`` (nc, 9) int: offset, energy (0 adiabatic, 1 isothermal or hydraulic, 2 heat loss), volume kind
+- cavities ``ci`` (nc, 10) int: offset, energy (0 adiabatic, 1 isothermal or hydraulic, 2 heat loss, 3 a real-gas
+  cavity's wall, hosted), volume kind
   (0 fixed, 1 table, 2 scaled mesh, 3 cubic spline of time, 4 of the dynamic body's displacement), volume table,
-  ledger offset, species count, the body's offset, hydraulic (1), temperature table of a hydraulic cavity;
+  ledger offset, species count, the body's offset, 1 hydraulic or 2 real gas (hosted: :mod:`exchange.hosted`),
+  temperature table of a hydraulic cavity or host id of a real-gas one, the volume spline's held piece;
   ``cf`` (nc, 11): T0 [K], added volume [m^3], minimum volume [m^3], h_c·A [W/K], T_amb [K], fixed or mesh volume
   [m^3], and of a hydraulic cavity reference density [kg/m^3], bulk modulus [Pa], reference pressure [Pa],
   reference temperature [K], thermal expansion [1/K];
@@ -26,14 +28,15 @@ Array layout (built by :func:`exchange.compiled.lower`):
   tank volume [m^3], gas moles [mol], orifice area [m^2], Cd [-]; ``irows`` (ni, nr, 7) total coefficients of the
   inflator gas;
 - exchanges ``ei`` (ne, 10) int: upstream, downstream (−1: ambient), two-way, amplitude table (−1: none),
-  has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`),
+  has a time window, has an equalised mode, has a pop pressure, law kind (:data:`exchange.compiled.LAW_KINDS`;
+  7 a law called in Python, :mod:`exchange.hosted`),
   geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind
   (0 constant, 1 steps of time, 2 steps of the dynamic body's displacement, 3 a surface on a vertex trajectory),
-  law table (leakage table rows or flux amplitude, −1: none), Cd table (−1: the constant ``ef[:, 1]``), Cd
-  abscissa (0 upstream pressure, 1 time); ``ef`` (ne, 9): area [m^2], Cd [-], open time [s], close time [s], pop
+  law table (leakage table rows or flux amplitude, −1: none; a hosted law's host id), Cd table (−1: the constant ``ef[:, 1]``), Cd
+  abscissa (0 upstream pressure, 1 time); ``ef`` (ne, 10): area [m^2], Cd [-], open time [s], close time [s], pop
   pressure [Pa], hold time [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance:
   conductance; leakage table: volume flag, held-last flag; flux: flux per area, volume flag; bulk viscosity: c_v,
-  c_h), switch scale;
+  c_h; a hosted law: 1 if prescribed), switch scale, area at activation;
   ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.equalised.EQUALISED_BELOW`); ``op`` (ne,)
   int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
   holding);
@@ -49,11 +52,12 @@ from numba import njit
 from blockage.moving_area import moving_leak_area
 from cavity.gas_rows import mixture_row, range_of, row_cp, row_enthalpy, temperature
 
+from .compiled_hosted import add_wall_heat, choke_ratio_of, hosted_flow, hosted_state, inflow_scratch
 from .compiled_sources import inflator_flow, law_flow, liquid_state, prescribed_flow
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, spline_value, step_value,
                               table_value, eos_volume)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
-from .orifice import LINEAR_BELOW, critical_pressure_ratio
+from .orifice import LINEAR_BELOW
 
 @njit(cache=True, inline="always")
 def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row):
@@ -65,6 +69,13 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
     for i in range(ci.shape[0]):
         if ci[i, 7] == 1:
             liquid_state(ci, cf, tx, ty, ti, i, t, y, st)
+            continue
+        if ci[i, 7] == 2:  # a real-gas cavity: its equation of state in Python (exchange.hosted)
+            T = hosted_state(ci[i, 8], i, t, y, st, T_guess[i])
+            if T == T:
+                T_guess[i] = T
+            else:
+                ok = False
             continue
         k, ns = ci[i, 0], ci[i, 5]
         m = 0.0
@@ -159,6 +170,8 @@ def exchange_flow(ei, ef, eq, op, iv, tx, ty, ti, st, amb, j, t):
     if ei[j, 7] == 5:
         return prescribed_flow(ei, ef, tx, ty, ti, st, j, area, t)
     a, b = ei[j, 0], ei[j, 1]
+    if ei[j, 7] == 7 and ef[j, 6] == 1.0:  # a prescribed law in Python: signed, from side a
+        return hosted_flow(ei[j, 11], j, a, side(st, amb, b, P), area, t, st)
     pa, pb = side(st, amb, a, P), side(st, amb, b, P)
     if pa >= pb:
         return law_flow(ei, ef, tx, ty, ti, st, amb, j, a, pb, area, t)
@@ -188,6 +201,8 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
         t = np.nextafter(seg_end, -np.inf)
     ok = states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row)
     dy[:] = 0.0
+    inflow = inflow_scratch(ci)  # per cavity with a real-gas wall, the mass flowing in [kg/s]
+    walls = inflow.size > 0
     for q in range(ii.shape[0]):
         i, start = ii[q, 0], if_[q, 0]
         if t < start:
@@ -203,6 +218,8 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
             dy[c + 1] += hdot
             if ci[i, 1] != 1:
                 dy[k + ns] += hdot
+            if walls:
+                inflow[i] += mdot
     for i in range(ci.shape[0]):
         if ci[i, 1] != 1:
             work = st[i, P] * st[i, DV]
@@ -215,6 +232,13 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
         mdot = exchange_flow(ei, ef, eq, op, iv, tx, ty, ti, st, amb, j, t)
         if mdot == 0.0:
             continue
+        if not mdot == mdot:  # a hosted law failed
+            ok = False
+            continue
+        if walls:
+            into = ei[j, 1] if mdot > 0.0 else ei[j, 0]
+            if into >= 0:
+                inflow[into] += abs(mdot)
         src = ei[j, 0] if mdot >= 0.0 else ei[j, 1]
         edot = mdot * side(st, amb, src, H)
         _transfer(ci, dy, ei[j, 0], -mdot, -edot, st, amb, src)
@@ -223,11 +247,13 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
         e = ledger + 2 * j
         dy[e] += mdot
         dy[e + 1] += edot
+    if walls:
+        ok = add_wall_heat(ci, inflow, dy) and ok
     return ok
 
 
 @njit(cache=True)
-def switch_value(kind, j, ei, ef, st, amb):
+def switch_value(kind, j, ci, ei, ef, st, amb):
     """Switch function of exchange j on the states in ``st`` (:meth:`Network._choke_switch`, kind 0,
     :meth:`Network._dp_switch`, kind 1, the equalise and release switches, kinds 2 and 3,
     :meth:`Network._pop_switch`, kinds 4 (pop) and 5 (pop-drop), the orifice join, kind 7) [-]. The pop-hold
@@ -244,5 +270,5 @@ def switch_value(kind, j, ei, ef, st, amb):
         pop = ef[j, 4]
         return (pa - pb - pop) / max(pop, pb)
     if pa >= pb:
-        return (pb - critical_pressure_ratio(st[a, GAM]) * pa) / pa
-    return (pa - critical_pressure_ratio(side(st, amb, b, GAM)) * pb) / pb
+        return (pb - choke_ratio_of(ci, st, amb, a) * pa) / pa
+    return (pa - choke_ratio_of(ci, st, amb, b) * pb) / pb

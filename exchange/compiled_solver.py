@@ -61,7 +61,7 @@ def switches(M, kinds, js, t, y, seg_end, vals):
             h = ef[j, 5]
             vals[q] = (t - (M[22][j] + h)) / h if h > 0.0 and not math.isnan(M[22][j]) else 1.0
         else:
-            vals[q] = switch_value(kinds[q], j, ei, ef, st, amb)
+            vals[q] = switch_value(kinds[q], j, ci, ei, ef, st, amb)
 
 
 @njit(cache=True)

@@ -18,6 +18,7 @@ from cavity.inflator_orifice import dual_pressure_state, pressure_mass_state
 
 from .bulk_viscosity import bulk_viscosity_mass_flow, linear_resistance_mass_flow
 from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
+from .compiled_hosted import hosted_flow
 from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, table_slope, table_value,
                               eos_volume)
 from .flux import mass_flux_mass_flow, volume_flux_mass_flow
@@ -59,6 +60,8 @@ def law_flow(ei, ef, tx, ty, ti, st, amb, j, u, p_down, area, t):
     [Pa], >= 0 (``law.mass_flow`` of :mod:`exchange.laws`; kinds in :data:`exchange.compiled.LAW_KINDS`)."""
     kind, p_up = ei[j, 7], side(st, amb, u, P)
     dp = p_up - p_down
+    if kind == 7:  # a law in Python (exchange.hosted): its object, host ei[j, 11]
+        return hosted_flow(ei[j, 11], j, u, p_down, area, t, st)
     if kind == 2:  # GraefeLaw
         return graefe_mass_flow(p_up, p_down, side(st, amb, u, RHO), area, ef[j, 6], ef[j, 7])
     if kind == 3:  # LinearResistanceLaw

@@ -1,12 +1,14 @@
 """The law-, activation- and liquid-specific columns of the arrays :func:`exchange.compiled.lower` builds (layout:
 :mod:`exchange.compiled_rhs`): each law's parameters and tables, a DELTA LEAKAGE AREA's base area, a hydraulic
-cavity's liquid data.
+cavity's liquid data, and the concatenated tables they index.
 """
 from __future__ import annotations
 
+import numpy as np
+
 from .discharge import PRESSURE, DischargeTable
 
-__all__ = ["law_parameters", "law_tables", "area_at_activation", "liquid", "UNLOCKED", "KNOT_SLACK"]
+__all__ = ["Tables", "spline_entry", "law_parameters", "law_tables", "area_at_activation", "liquid", "UNLOCKED", "KNOT_SLACK"]
 
 #: ``ci[i, 9]`` of a cavity whose volume spline is evaluated on the piece holding x (no piece held:
 #: :func:`exchange.compiled_tables.spline_piece_value`).
@@ -67,3 +69,36 @@ def liquid(cav) -> tuple:
         return (0.0,) * 5
     return (cav.reference_density, cav.bulk_modulus, cav.reference_pressure, cav.reference_temperature,
             cav.thermal_expansion)
+
+
+class Tables:
+    """The tables of a lowered network, concatenated: ``tx``, ``ty`` and ``ti`` (:mod:`exchange.compiled_rhs`)."""
+
+    def __init__(self):
+        self.x, self.y, self.index, self.size = [], [], [], 0
+
+    def add(self, table) -> int:
+        x, y = np.asarray(table.x, dtype=float).ravel(), np.asarray(table.y, dtype=float).ravel()
+        self.index.append((self.size, len(x), 1 if table.extrapolation == "linear" else 0))
+        self.x.append(x)
+        self.y.append(y)
+        self.size += len(x)
+        return len(self.index) - 1
+
+    def add_arrays(self, x, y) -> int:
+        """A raw entry (x and y of equal length), e.g. the steps of an area or the knots of a spline."""
+        return self.add(type("T", (), {"x": x, "y": y, "extrapolation": "constant"})())
+
+    def arrays(self):
+        if not self.index:
+            self.add(type("T", (), {"x": (0.0,), "y": (0.0,), "extrapolation": "constant"})())
+        return (np.concatenate(self.x), np.concatenate(self.y), np.array(self.index, dtype=np.int64).reshape(-1, 3))
+
+
+def spline_entry(tables, knots, coefficients) -> int:
+    """Knots (table k, their values unused) and coefficients (table k + 1, 4 per piece) of a cubic spline."""
+    knots = np.asarray(knots, dtype=float)
+    k = tables.add_arrays(knots, np.zeros(len(knots)))
+    flat = np.asarray(coefficients, dtype=float).T.ravel()
+    tables.add_arrays(np.zeros(len(flat)), flat)
+    return k

@@ -58,12 +58,12 @@ def pressures(model, traj, times):
 
 def test_each_flow_law_is_one_function_on_both_paths():
     """The compiled right-hand side inlines the very laws Python calls (numba dispatchers), no mirror copies."""
-    from exchange import compiled_rhs, compiled_sources, fabric
+    from exchange import compiled_hosted, compiled_sources, fabric
 
     assert compiled_sources.orifice_mass_flow is orifice.orifice_mass_flow  # (law_flow lives there)
     assert compiled_sources.fabric_leakage_mass_flow is fabric.fabric_leakage_mass_flow
     assert compiled_sources.graefe_mass_flow is fabric.graefe_mass_flow
-    assert compiled_rhs.critical_pressure_ratio is orifice.critical_pressure_ratio
+    assert compiled_hosted.critical_pressure_ratio is orifice.critical_pressure_ratio
     assert hasattr(orifice.orifice_mass_flow, "py_func")  # compiled, callable from Python
 
 
@@ -160,19 +160,38 @@ def test_release_reopens_an_equalised_exchange(tmp_path):
     assert np.max(np.abs(pressures(model, fast_traj, times) / pressures(model, slow_traj, times) - 1)) < 1e-8
 
 
-def test_unsupported_networks_fall_back_to_python(tmp_path):
-    from exchange.laws import OrificeLaw
+def test_laws_of_ones_own_run_hosted_on_the_compiled_path(tmp_path):
+    """A law the compiled path does not carry (a subclass of one it does, a prescribed law written in Python) is
+    called in Python from the compiled kernels (exchange/hosted.py): the run is compiled and gives the history of
+    the same law lowered to 1e-12; a law without mass_flow falls back to the Python path, and compiled=True says
+    why."""
+    from exchange.laws import FluxLaw, OrificeLaw
 
     class OwnOrifice(OrificeLaw):
         """A law the compiled path does not know (a subclass of one it does)."""
+
+    class OwnFlux(FluxLaw):
+        """A prescribed law of one's own."""
 
     data = tank(pressure=2e5)
     data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4}]
     model = build_model(scene_from_dict(copy.deepcopy(data), tmp_path / "scene.toml"))
     net = model.network
-    net.exchanges = (replace(net.exchanges[0], law=OwnOrifice()),)
-    assert net.compiled_solver() is None and "law OwnOrifice" in net.compiled_unsupported()
-    assert integrate(net, net.initial_state(), 0.0, 0.1, model.options).path == "python"
+    times = np.linspace(0.0, 0.1, 41)
+    for own, lowered in ((OwnOrifice(), OrificeLaw()), (OwnFlux("mass", -2.0), FluxLaw("mass", -2.0))):
+        out = []
+        for law in (own, lowered):
+            net.exchanges = (replace(net.exchanges[0], law=law),)
+            traj = integrate(net, net.initial_state(), 0.0, 0.1, model.options)
+            assert traj.path == "compiled" and (net.compiled_solver().host >= 0) == (law is own)
+            out.append(pressures(model, traj, times))
+        assert np.max(np.abs(out[0] / out[1] - 1.0)) < 1e-12
+
+    class NoLaw:
+        pneumatic, prescribed = True, False
+
+    net.exchanges = (replace(net.exchanges[0], law=NoLaw()),)
+    assert net.compiled_solver() is None and "NoLaw has no mass_flow" in net.compiled_unsupported()
     with pytest.raises(SolverError, match="compiled path cannot run"):
         integrate(net, net.initial_state(), 0.0, 0.1, replace(model.options, compiled=True))
 

@@ -91,14 +91,15 @@ def scene(data):
 
 @pytest.mark.parametrize("variant, tol", [
     ("relief 12 N, mu0 8e4, eta 0.3", 1e-6),
-    ("penalty drop, critical fraction 0.3", 1e-10),
-    ("softened drop, standard damping", 1e-10),
-    ("hard drop under gravity, explicit damping", 1e-10),
+    ("penalty drop, critical fraction 0.3", 1e-9),
+    ("softened drop, standard damping", 1e-9),
+    ("hard drop under gravity, explicit damping", 1e-9),
 ])
 def test_seat_variants_compiled_equal_python(variant, tol):
     """Every law and damping style through both paths: same events (kinks, seat switches, impacts), same
-    histories and CPRESS (observed 4e-9 of the peaks on the relief variant at rtol 1e-9, ≤ 1.2e-12 on the
-    drops at 1e-10)."""
+    histories and CPRESS (observed 4e-9 of the peaks on the relief variant at rtol 1e-9; on the drops at 1e-10,
+    ≤ 1.2e-12 on one machine and 3.4e-10 on another, whose numba and numpy round differently: the round-off moves
+    a step size where the error estimate is itself round-off, so the bound is 10 rtol, not a round-off figure)."""
     drop = dict(preload=0.0, velocity=1.5, axis=(0.0, 0.0, -1.0), end=2.5e-3)
     sc = {
         "relief 12 N, mu0 8e4, eta 0.3": relief_variant,

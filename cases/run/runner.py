@@ -134,7 +134,7 @@ def compiled_readback(model: Model, traj: Trajectory):
     if traj.path != "compiled" or contact_columns(model):
         return None
     fast = model.network.compiled_solver()
-    if fast is None:
+    if fast is None or fast.host >= 0:  # hosted parts (a real-gas wall's columns): row by row
         return None
     from exchange.compiled_history import equalised_per_segment, history
     from exchange.compiled_peak import peaks
