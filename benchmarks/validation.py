@@ -7,7 +7,8 @@ discharge (p, mean gas T) and air filling from 3.7 kPa (no measured history: ven
 For each: ventsim's error against the measurement (pressure [bar] and gas temperature [K], RMS and max over the
 measured points, the model interpolated linearly onto them; the N2 gas temperature against the mean of its two
 probes; the wall against the mean of the inner and outer probes), the minimum gas temperature computed and
-measured, and CPU and wall times: ventsim build + run (best of 10, CoolProp's fluid loaded once beforehand) and
+measured, and CPU and wall times: ventsim build + run (best of 10, CoolProp's fluid loaded once beforehand; on
+the compiled engine, CoolProp's calls hosted, and on the Python right-hand side, the previous engine) and
 HydDown's HydDown(setup) + run() (best of 5, in its own interpreter); on a shared machine the CPU times are the
 steadier figure. HydDown runs when an interpreter that imports it is
 found (HYDDOWN_PYTHON, /work/venv-hyddown/bin/python, or this one); its rows are skipped otherwise. Plots of
@@ -28,6 +29,7 @@ import os
 import subprocess
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -68,17 +70,21 @@ def measured(stem, gas, wall) -> dict:
     return {k: v for k, v in out.items() if v is not None}
 
 
-def run_ventsim(scene: str, repeats: int = 10) -> dict:
+def run_ventsim(scene: str, repeats: int = 10, compiled=None) -> dict:
+    """ventsim's run of ``scene``: on the compiled engine (``compiled`` None, the default) or on the Python
+    right-hand side (False, the previous engine: the same-run baseline)."""
     path = HERE / f"{scene}.toml"
     build_model(load_scene(path))  # loads CoolProp's fluid and fits the species once
     wall = cpu = float("inf")
     for _ in range(repeats):
         start, start_cpu = time.perf_counter(), time.process_time()
-        r = run(build_model(load_scene(path)))
+        model = build_model(load_scene(path))
+        model.options = replace(model.options, compiled=compiled)
+        r = run(model)
         wall, cpu = min(wall, time.perf_counter() - start), min(cpu, time.process_time() - start_cpu)
     return {"time": r.column("time"), "p": r.column("vessel.pressure"), "T": r.column("vessel.temperature"),
             "T_wall": r.column("vessel.wall_temperature"), "wall time [s]": wall, "cpu time [s]": cpu,
-            "rhs": r.summary["solver"]["rhs_calls"]}
+            "rhs": r.summary["solver"]["rhs_calls"], "path": r.summary["solver"]["path"]}
 
 
 def hyddown_python() -> str | None:
@@ -155,11 +161,13 @@ def main(argv=None) -> int:
     print("| case | code | p RMS [bar] | p max [bar] | T RMS [K] | T max [K] | T min (max) computed [K] | "
           "T min measured [K] | wall T RMS [K] | CPU time [s] | wall time [s] |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
-    results, speed = [], []
+    results, speed, engines = [], [], []
     for scene, setup, stem, gas, wall in CASES:
         meas = measured(stem, gas, wall)
-        ours = run_ventsim(scene)
-        print(rows_of(scene, f"ventsim ({ours['rhs']} RHS)", ours, meas))
+        ours, before = run_ventsim(scene), run_ventsim(scene, compiled=False)
+        print(rows_of(scene, f"ventsim ({ours['rhs']} RHS, {ours['path']})", ours, meas))
+        print(rows_of(scene, f"ventsim ({before['rhs']} RHS, {before['path']})", before, meas))
+        engines.append((scene, before["cpu time [s]"] / ours["cpu time [s]"]))
         theirs = run_hyddown(exe, setup) if exe else None
         if theirs is not None:
             print(rows_of(scene, "HydDown", theirs, meas))
@@ -170,6 +178,9 @@ def main(argv=None) -> int:
     for scene, cpu, wall, dev in speed:
         print(f"\n{scene}: HydDown / ventsim CPU time {cpu:.1f}x, wall time {wall:.1f}x; largest "
               f"|p_ventsim - p_HydDown| {dev:.3f} bar", end="")
+    for scene, ratio in engines:
+        print(f"\n{scene}: Python right-hand side / compiled engine (hosted CoolProp calls) CPU time {ratio:.2f}x",
+              end="")
     print(f"\n\nplot: {plot(results, out)}")
     return 0
 
