@@ -8,7 +8,8 @@ so no step ever straddles a discontinuity.
 Two paths run the same algorithm. A system that can lower itself to arrays (``compiled_solver()``, e.g. a plain
 ``exchange.network.Network``) runs, with DOP853 (the default), in one numba call (:mod:`cavity.rk_compiled`,
 ``exchange.compiled_solver``): the same steps, switches and restarts as solve_ivp's DOP853, 20–40× faster
-(docs/benchmarks.md). Any other system or method runs through ``solve_ivp``. ``Trajectory.path`` says which ran.
+(docs/benchmarks.md), except that a trial step whose stage finds no gas state is retried shorter where solve_ivp
+stops. Any other system or method runs through ``solve_ivp``. ``Trajectory.path`` says which ran.
 """
 from __future__ import annotations
 

@@ -182,19 +182,25 @@ def _dense_stages(M, t, y, h, K, ytmp, seg_end, stats):
 @njit(cache=True)
 def _step(M, t, y, f, h_abs, min_step, t_bound, K, ytmp, y_new, rtol, atol, seg_end, stats):
     """One accepted DOP853 step from (t, y) with f = f(t, y), trying |h| = h_abs first (scipy ``RungeKutta.
-    _step_impl``): returns (status, h, t_new, next |h|); y_new and K hold the step."""
+    _step_impl``): returns (status, h, t_new, next |h|); y_new and K hold the step. A stage whose right-hand
+    side fails (no gas state: a trial step overshooting into states the equation of state does not hold) rejects
+    the step and retries it shorter by scipy's largest cut (``MIN_FACTOR``), down to the minimum step (then RHS_FAILED), where
+    scipy's would stop at once; a run that never fails takes scipy's steps."""
     n = y.size
     scale = np.empty(n)
-    rejected = False
+    rejected = failed = False
     while True:
         if h_abs < min_step:
-            return STEP_TOO_SMALL, 0.0, t, h_abs
+            return (RHS_FAILED if failed else STEP_TOO_SMALL), 0.0, t, h_abs
         t_new = min(t + h_abs, t_bound)
         h = t_new - t
         h_abs = abs(h)
         K[0] = f
         if not _stages(M, t, y, h, K, ytmp, y_new, seg_end, stats):
-            return RHS_FAILED, h, t, h_abs
+            h_abs *= MIN_FACTOR  # a stage left the states the gas can take (a trial step too long): retry shorter
+            rejected = failed = True
+            continue
+        failed = False
         for i in range(n):
             scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
         err = error_norm(K, h, scale)
