@@ -4,13 +4,14 @@
 ``None`` with the reason in :func:`unsupported_reason`; :func:`cavity.integration.integrate` then runs the Python
 path. Supported: a plain ``Network`` or a scene network that lowers its geometry, ideal-gas mixtures with
 piecewise cp polynomials, adiabatic, isothermal or heat-loss gas cavities, real-gas cavities (adiabatic, heat
-loss or a wall) and hydraulic cavities (without inflators) with fixed, table or scaled-mesh volumes, mass/temperature-table, tank-test, pressure-and-mass and
-dual-pressure inflators, exchanges to ambient (one- or two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance,
-leakage-table (mass or volume rate), prescribed-flux (mass or volume) or bulk-viscosity law, a constant Cd or a
-Cd table of upstream pressure or time, with an optional time window, amplitude table, pop pressure with hold time
-and DELTA LEAKAGE AREA; any other law with ``mass_flow(up, p_down, area, t)`` (the real-gas nozzle, a user's
-law). A real-gas cavity's equation of state and wall and the laws outside that list stay Python objects that the
-compiled kernels call (:mod:`exchange.hosted`); the rest is compiled.
+loss or a wall) and hydraulic cavities (without inflators) with fixed, table or scaled-mesh volumes,
+mass/temperature-table, tank-test, pressure-and-mass and dual-pressure inflators, exchanges to ambient (one- or
+two-way) or between cavities with an orifice, fabric-leakage, Graefe, linear-resistance, leakage-table (mass or
+volume rate), prescribed-flux (mass or volume) or bulk-viscosity law, a constant Cd or a Cd table of upstream
+pressure or time, with an optional time window, amplitude table, pop pressure with hold time and DELTA LEAKAGE
+AREA; any other law with ``mass_flow(up, p_down, area, t)`` (the real-gas nozzle, a user's law). A real-gas
+cavity's equation of state and wall and the laws outside that list stay Python objects that the compiled kernels
+call (:mod:`exchange.hosted`); the rest is compiled.
 
 The arrays are described in :mod:`exchange.compiled_rhs`.
 """

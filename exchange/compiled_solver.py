@@ -5,10 +5,8 @@ between stops (scipy's DOP853 with dense output: same initial step, error norm, 
 functions watched away from their current sign (``_directions``), an event located by Brent's method on the
 step's dense output (``solve_ivp``'s ``brentq`` with xtol = rtol = 4·eps), the state at the event integrated to
 it from the start of the step (``_state_at_event``), the step budget counted on every accepted step and switches
-that keep firing at one instant stopped.
-
-``M`` is the model tuple of :func:`exchange.compiled.CompiledNetwork.model` (the arrays of
-:mod:`exchange.compiled_rhs`, scratch included).
+that keep firing at one instant stopped. ``M`` is the model tuple of :func:`exchange.compiled.CompiledNetwork.model`
+(the arrays of :mod:`exchange.compiled_rhs`, scratch included).
 """
 from __future__ import annotations
 
@@ -182,10 +180,8 @@ def _dense_stages(M, t, y, h, K, ytmp, seg_end, stats):
 @njit(cache=True)
 def _step(M, t, y, f, h_abs, min_step, t_bound, K, ytmp, y_new, rtol, atol, seg_end, stats):
     """One accepted DOP853 step from (t, y) with f = f(t, y), trying |h| = h_abs first (scipy ``RungeKutta.
-    _step_impl``): returns (status, h, t_new, next |h|); y_new and K hold the step. A stage whose right-hand
-    side fails (no gas state: a trial step overshooting into states the equation of state does not hold) rejects
-    the step and retries it shorter by scipy's largest cut (``MIN_FACTOR``), down to the minimum step (then RHS_FAILED), where
-    scipy's would stop at once; a run that never fails takes scipy's steps."""
+    _step_impl``): returns (status, h, t_new, next |h|); y_new and K hold the step. A failed stage (no gas state)
+    retries the step ``MIN_FACTOR`` shorter, to the minimum step (then RHS_FAILED); scipy's would stop."""
     n = y.size
     scale = np.empty(n)
     rejected = failed = False
@@ -196,11 +192,11 @@ def _step(M, t, y, f, h_abs, min_step, t_bound, K, ytmp, y_new, rtol, atol, seg_
         h = t_new - t
         h_abs = abs(h)
         K[0] = f
-        if not _stages(M, t, y, h, K, ytmp, y_new, seg_end, stats):
-            h_abs *= MIN_FACTOR  # a stage left the states the gas can take (a trial step too long): retry shorter
-            rejected = failed = True
+        failed = not _stages(M, t, y, h, K, ytmp, y_new, seg_end, stats)
+        if failed:  # a stage left the states the gas can take (a trial step too long): retry shorter
+            h_abs *= MIN_FACTOR
+            rejected = True
             continue
-        failed = False
         for i in range(n):
             scale[i] = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
         err = error_norm(K, h, scale)
