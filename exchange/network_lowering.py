@@ -14,7 +14,8 @@ class NetworkLowering:
         part of it is not supported there (then the integrator runs the Python path). Built once and kept."""
         key = (type(self), self.gas, self.cavities, self.exchanges, self.ambient)
         cached = self.__dict__.get("_compiled")
-        if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])):
+        if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])) \
+                or not _hosted_here(cached[-1], self):
             from .compiled import lower
 
             cached = key + (lower(self),)
@@ -32,3 +33,14 @@ class NetworkLowering:
         from .compiled import unsupported_reason
 
         return unsupported_reason(self)
+
+
+def _hosted_here(fast, net) -> bool:
+    """A lowered network's hosted parts are registered in this process for ``net`` (not, e.g., for the network
+    it was copied or unpickled from): else it is lowered again (:mod:`exchange.hosted`)."""
+    if fast is None or fast.host < 0:
+        return True
+    from .hosted import HOSTS
+
+    host = HOSTS.get(fast.host)
+    return host is not None and host.network is net

@@ -225,3 +225,23 @@ def test_a_stage_outside_the_gas_states_shortens_the_step(filling_run):
     for name, tol in (("vessel.pressure", 1e-2), ("vessel.wall_temperature", 1e-6)):
         a, b = fast.column(name), filling_run.column(name)
         assert np.abs(a - b).max() <= tol * np.abs(b).max(), name
+
+
+def test_a_copied_network_hosts_its_own_parts(n2_run):
+    """The hosted parts are registered per network (exchange/hosted.py): a copy of a lowered real-gas network
+    (sharing its cached lowering) is lowered again for itself, and the registration goes with its network."""
+    import copy
+    import gc
+
+    from exchange.hosted import HOSTS
+
+    net = n2_run.model.network
+    fast = net.compiled_solver()
+    assert HOSTS[fast.host].network is net and net.compiled_solver() is fast
+    twin = copy.copy(net)
+    other = twin.compiled_solver()
+    assert other.host != fast.host and HOSTS[other.host].network is twin
+    key = other.host
+    del twin, other
+    gc.collect()
+    assert key not in HOSTS
