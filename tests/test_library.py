@@ -93,3 +93,22 @@ def test_volume_of_a_dynamic_body_converges_in_rtol(compiled):
     errors = [float(np.max(np.abs(r.history[:, c] - ref)) / ref.max()) for r in runs[:-1]]
     assert all(b <= a for a, b in zip(errors, errors[1:])) and errors[-1] <= 1e-10, errors
     assert runs[-1].summary["solver"]["events"] > 50  # the knots the headform passes, each a switch
+
+
+def test_a_dynamic_body_on_a_leakage_surface_that_moves_in_time_is_refused(tmp_path):
+    """airbag_impactor_dynamic with the cushion's mesh scaled by a table of time: the headform's blockage track is
+    one of its displacement, the surface's motion one of time, so the scene is refused on the blocking key with
+    what to do instead (it used to run, reading the time table at the displacement)."""
+    from cases.model.build import build_model
+    from cases.run.library import HERE
+    from cases.scene.errors import SceneError
+    from cases.scene.files import load_scene
+
+    (tmp_path / "scale.csv").write_text("time,scale\n0,1\n0.06,1.05\n")
+    text = (HERE / CASES["airbag_impactor_dynamic"]).read_text()
+    text = text.replace('"meshes/', f'"{(HERE / "meshes").as_posix()}/').replace('"data/', f'"{(HERE / "data").as_posix()}/')
+    assert 'wrapped_by = ["headform"]' in text
+    path = tmp_path / "scaled.toml"
+    path.write_text(text.replace('wrapped_by = ["headform"]', 'wrapped_by = ["headform"]\nmesh_scale_table = "scale.csv"', 1))
+    with pytest.raises(SceneError, match=r"exchange\[0\]\.blocked_by: the leakage surface scales .* prescribed motion"):
+        build_model(load_scene(path))

@@ -99,6 +99,19 @@ def read_nodes(scene, j):
     return rows[:, :3].copy(), (rows[:, 3].copy() if rows.shape[1] == 4 else None)
 
 
+def _check_fixed_under_a_dynamic_body(scene, j, driver, path) -> None:
+    """A dynamic body's blockage track is one of its displacement s; a leakage surface that moves in time (its
+    cavity mesh's scale table or mesh series, or its own series) would make it one of (t, s) together, which is
+    not tracked: such a scene is refused rather than run with the time table read at s."""
+    if driver.dynamic is None or (path.scale is None and path.trajectory is None):
+        return
+    how = "scales with its cavity mesh's scale table" if path.scale is not None else "moves with a mesh series"
+    raise SceneError(scene.path, f"exchange[{j}].blocked_by",
+                     f"the leakage surface {how} (in time) and is blocked by a dynamic body, whose blockage is "
+                     "tracked along its displacement only; give the body a prescribed motion (a motion table) "
+                     "or keep the leakage surface's mesh fixed")
+
+
 def _knots(driver, path, lo, hi):
     pts = set(driver.breakpoints) if driver.dynamic is None else set()
     if path.scale is not None:
@@ -145,6 +158,7 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
         weights = node_weights(surface.face_areas, surface.faces, surface.face_sizes, len(surface.vertices))
         total = surface.total_area
         options.update(scale=path.scale)
+    _check_fixed_under_a_dynamic_body(scene, j, driver, path)
     depth = float(e.penetration_depth or 0.0)
     placements = [placement_of(driver, n, depth) for n in e.blocked_by]
     if e.self_contact:

@@ -91,7 +91,7 @@ class GeometricAreas:
         scale and the pack of a surface on a vertex trajectory (:mod:`blockage.moving_area`) or None; per wrapped
         cavity its volume spline of time (of the dynamic body's displacement for the cavity it intrudes into), the
         dynamic body and its seat contact; or why it cannot be lowered (a moving surface blocked by the dynamic
-        body)."""
+        body: scenes refuse it at load, :func:`cases.model.build_leak.build_leak_area`)."""
         areas, volumes = {}, {}
         for j, ga in enumerate(self.areas):
             if ga is None:
