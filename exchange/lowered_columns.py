@@ -8,7 +8,8 @@ import numpy as np
 
 from .discharge import PRESSURE, DischargeTable
 
-__all__ = ["Tables", "spline_entry", "law_parameters", "law_tables", "area_at_activation", "liquid", "UNLOCKED", "KNOT_SLACK"]
+__all__ = ["Tables", "spline_entry", "law_parameters", "law_tables", "area_at_activation", "liquid", "UNLOCKED",
+           "KNOT_SLACK"]
 
 #: ``ci[i, 9]`` of a cavity whose volume spline is evaluated on the piece holding x (no piece held:
 #: :func:`exchange.compiled_tables.spline_piece_value`).

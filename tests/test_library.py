@@ -106,9 +106,11 @@ def test_a_dynamic_body_on_a_leakage_surface_that_moves_in_time_is_refused(tmp_p
 
     (tmp_path / "scale.csv").write_text("time,scale\n0,1\n0.06,1.05\n")
     text = (HERE / CASES["airbag_impactor_dynamic"]).read_text()
-    text = text.replace('"meshes/', f'"{(HERE / "meshes").as_posix()}/').replace('"data/', f'"{(HERE / "data").as_posix()}/')
+    for folder in ("meshes", "data"):
+        text = text.replace(f'"{folder}/', f'"{(HERE / folder).as_posix()}/')
     assert 'wrapped_by = ["headform"]' in text
     path = tmp_path / "scaled.toml"
-    path.write_text(text.replace('wrapped_by = ["headform"]', 'wrapped_by = ["headform"]\nmesh_scale_table = "scale.csv"', 1))
+    scaled = 'wrapped_by = ["headform"]\nmesh_scale_table = "scale.csv"'
+    path.write_text(text.replace('wrapped_by = ["headform"]', scaled, 1))
     with pytest.raises(SceneError, match=r"exchange\[0\]\.blocked_by: the leakage surface scales .* prescribed motion"):
         build_model(load_scene(path))
