@@ -198,10 +198,14 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
     return _compiled_trajectory(system, fast, t0, recs, segs, evs, st)
 
 
+#: Why a compiled right-hand side failed when the lowered system does not say (``failure()``).
+NO_TEMPERATURE = "no temperature found for a cavity's internal energy"
+
+
 def _failure(fast) -> str:
     """Why the compiled right-hand side failed (the lowered system's ``failure()``, if it says)."""
     failure = getattr(fast, "failure", None)
-    return failure() if failure is not None else "no temperature found for a cavity's internal energy"
+    return failure() if failure is not None else NO_TEMPERATURE
 
 
 def _compiled_trajectory(system, fast, t0, recs, segs, evs, st) -> Trajectory:

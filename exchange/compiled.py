@@ -25,11 +25,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from cavity.integration import NO_TEMPERATURE
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 
+from . import laws
 from .compiled_contact import event_states, seat_arrays
 from .compiled_inflators import INFLATOR_KINDS, lower_inflators, warn_clamped
-from .hosted import host_of, is_hosted_law, register
+from .discharge import DischargeTable
+from .hosted import host_of, register
 from .law_kinks import dp_kinks, pressure_kinks
 from .lowered_columns import (UNLOCKED, Tables, area_at_activation, law_parameters, law_tables,
                               liquid as liquid_columns, spline_entry)
@@ -37,8 +40,7 @@ from .lowered_columns import (UNLOCKED, Tables, area_at_activation, law_paramete
 __all__ = ["CompiledNetwork", "lower", "unsupported_reason"]
 
 ENERGY = {"adiabatic": 0, "isothermal": 1, "heat_loss": 2}
-#: energy codes of a real-gas cavity (``ci[i, 1]``; 3: a wall, its heat flows hosted)
-REAL_GAS_ENERGY = {"adiabatic": 0, "heat_loss": 2, "wall": 3}
+REAL_GAS_ENERGY = {"adiabatic": 0, "heat_loss": 2, "wall": 3}  # ci[i, 1] of a real-gas cavity (3: hosted wall)
 HOSTED_LAW = 7  # ``ei[j, 7]`` of a law the compiled path calls in Python (exchange.hosted)
 #: law class of :mod:`exchange.laws` -> kind code in ``ei[:, 7]`` (:func:`exchange.compiled_rhs.law_flow`)
 LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResistanceLaw": 3, "LeakageTableLaw": 4,
@@ -111,9 +113,7 @@ class CompiledNetwork:
         """Why the latest right-hand side failed: a hosted part's exception (:mod:`exchange.hosted`), else no
         temperature for a cavity's internal energy."""
         error = host_of(self.host).error if self.host >= 0 else None
-        if error is not None:
-            return f"{type(error).__name__}: {error}"
-        return "no temperature found for a cavity's internal energy"
+        return NO_TEMPERATURE if error is None else f"{type(error).__name__}: {error}"
 
     def _load_discrete_state(self) -> None:
         """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
@@ -208,15 +208,22 @@ def unsupported_reason(net) -> str | None:
             if type(inf) not in INFLATOR_KINDS or tuple(inf.gas.breaks) != tuple(net.gas.breaks):
                 return f"inflator {inf.name}: {type(inf).__name__}"
     for ex in net.exchanges:
-        if is_hosted_law(ex.law, LAW_KINDS) and not callable(getattr(ex.law, "mass_flow", None)):
+        if _is_hosted(ex.law) and not callable(getattr(ex.law, "mass_flow", None)):
             return f"exchange {ex.name}: law {type(ex.law).__name__} has no mass_flow(up, p_down, area, t)"
     return None
+
+
+def _is_hosted(law) -> bool:
+    """A law called in Python (:mod:`exchange.hosted`): not exactly a :data:`LAW_KINDS` class with a lowerable Cd."""
+    name = type(law).__name__
+    return not (name in LAW_KINDS and type(law) is getattr(laws, name, None)
+                and isinstance(getattr(law, "discharge_coefficient", 1.0), (int, float, DischargeTable)))
 
 
 def has_hosted_parts(net) -> bool:
     """A real-gas cavity or a law the compiled path calls in Python (:mod:`exchange.hosted`)."""
     return any(getattr(c, "kind", "gas") == "realgas" for c in net.cavities) \
-        or any(is_hosted_law(ex.law, LAW_KINDS) for ex in net.exchanges)
+        or any(_is_hosted(ex.law) for ex in net.exchanges)
 
 
 def _geometry(net) -> dict:
@@ -260,7 +267,7 @@ def _exchanges(net, tables, host):
         amp = tables.add(act.amplitude) if act is not None and act.amplitude is not None else -1
         window = act is not None
         pop = window and act.pop_pressure is not None
-        hosted = is_hosted_law(ex.law, LAW_KINDS)
+        hosted = _is_hosted(ex.law)
         cd, p1, p2 = (1.0, float(bool(ex.law.prescribed)), 0.0) if hosted else law_parameters(ex.law)
         steps, scale, kind, switch_scale = -1, -1, 0, 1.0
         if j in geometric:

@@ -33,10 +33,10 @@ Array layout (built by :func:`exchange.compiled.lower`):
   geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind
   (0 constant, 1 steps of time, 2 steps of the dynamic body's displacement, 3 a surface on a vertex trajectory),
   law table (leakage table rows or flux amplitude, −1: none; a hosted law's host id), Cd table (−1: the constant
-  ``ef[:, 1]``), Cd abscissa (0 upstream pressure, 1 time), DELTA LEAKAGE AREA (1); ``ef`` (ne, 10): area [m^2],
-  Cd [-], open time [s], close time [s], pop pressure [Pa], hold time [s], law parameters (fabric: open fraction; Graefe: FLC, FAC; linear resistance:
-  conductance; leakage table: volume flag, held-last flag; flux: flux per area, volume flag; bulk viscosity: c_v,
-  c_h; a hosted law: 1 if prescribed), switch scale, area at activation;
+  ``ef[:, 1]``), Cd abscissa (0 upstream pressure, 1 time), DELTA LEAKAGE AREA (1); ``ef`` (ne, 10): area [m^2], Cd
+  [-], open time [s], close time [s], pop pressure [Pa], hold time [s], law parameters (fabric: open fraction;
+  Graefe: FLC, FAC; linear resistance: conductance; leakage table: volume flag, held-last flag; flux: flux per area,
+  volume flag; bulk viscosity: c_v, c_h; a hosted law: 1 if prescribed), switch scale, area at activation;
   ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.equalised.EQUALISED_BELOW`); ``op`` (ne,)
   int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
   holding);

@@ -25,23 +25,11 @@ import numpy as np
 from .compiled_tables import DV, FR, GAM, H, MASS, P, RG, RHO, TT, V
 from .vent import GasPoint
 
-__all__ = ["Host", "register", "host_of", "cavity_state", "law_flow", "wall_heat", "choke_ratio", "is_hosted_law"]
+__all__ = ["Host", "register", "host_of", "cavity_state", "law_flow", "wall_heat", "choke_ratio"]
 
 HOSTS: dict = {}
 _IDS = itertools.count()
 _FAILURES = (ArithmeticError, ValueError)
-
-
-def is_hosted_law(law, lowered_kinds) -> bool:
-    """A law the compiled path calls in Python: pressure-driven, and not one of the lowered law classes (by exact
-    class: a subclass may override ``mass_flow``) with a lowerable discharge coefficient."""
-    from .discharge import DischargeTable
-    from . import laws
-
-    name = type(law).__name__
-    lowered = name in lowered_kinds and type(law) is getattr(laws, name, None) \
-        and isinstance(getattr(law, "discharge_coefficient", 1.0), (int, float, DischargeTable))
-    return not lowered
 
 
 class Host:
