@@ -82,7 +82,7 @@ class SolverOptions:
         ``compiled_solver()``): None (default) when the method is DOP853 and the system can be lowered, else the
         Python path; True: require it (error if the system cannot be lowered); False: never. With another method
         a system that lowers runs through ``solve_ivp`` on the compiled right-hand side (``segment_rhs``;
-        ``solver.path`` "python, compiled rhs"), unless ``compiled`` is False.
+        ``solver.path`` "compiled, solve_ivp"), unless ``compiled`` is False.
     """
 
     method: str = "DOP853"
@@ -123,11 +123,14 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
         Show a progress bar on stderr when the run takes more than a second.
     """
     stops = sorted({float(b) for b in system.breakpoints if t0 < b < t1} | {t1})
-    armed = [(float(t0), label) for label in system.arm(t0, np.asarray(y0, dtype=float))] \
-        if hasattr(system, "arm") else []
     fast = _compiled_system(system, options)
+    if fast is not None and options.method != "DOP853":  # scipy's method on the compiled engine
+        network, system = system, fast.solve_ivp_system(SWITCH_NEAR_ZERO_PER_RTOL * options.rtol)
+    y0 = np.asarray(y0, dtype=float)
+    arm = getattr(fast if fast is not None else system, "arm", None)
+    armed = [(float(t0), label) for label in arm(t0, y0)] if arm is not None else []
     start = _time.perf_counter()
-    if fast is not None:
+    if fast is not None and options.method == "DOP853":
         traj = _integrate_compiled(system, fast, y0, t0, stops, options)
         traj.events[:0] = armed
         traj.stats["events"] += len(armed)
@@ -137,8 +140,9 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
             exc.trajectory = traj
             raise exc
         return traj
-    traj = Trajectory(deadline=start + options.max_wall, events=armed)
-    traj.stats["events"] = len(armed)
+    path = getattr(system, "path", "python")
+    traj = Trajectory(deadline=start + options.max_wall, events=armed, path=path)
+    traj.stats.update(events=len(armed), path=path)
     bar = ProgressBar(t1 - t0, desc="ventsim", unit="s", enabled=progress)
     t, y = float(t0), np.asarray(y0, dtype=float)
     try:
@@ -152,20 +156,21 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
         raise
     finally:
         bar.close()
+    if fast is not None and traj.modes:  # the discrete state at the end, as the compiled DOP853 leaves it
+        network.restore(traj.modes[-1])
     return traj
 
 
 def _compiled_system(system, options):
     """The system lowered for the compiled path, or None when the Python path runs (see SolverOptions.compiled)."""
-    if options.compiled is False or (options.compiled is None and options.method != "DOP853"):
+    if options.compiled is False:
         return None
     lower = getattr(system, "compiled_solver", None)
     fast = lower() if lower is not None else None
     if fast is None and options.compiled:
         raise SolverError(f"the compiled path cannot run {type(system).__name__}: "
                           f"{getattr(system, 'compiled_unsupported', lambda: 'no compiled_solver()')()}")
-    # other methods run through solve_ivp on the compiled right-hand side (the system's ``segment_rhs``)
-    return fast if options.method == "DOP853" else None
+    return fast
 
 
 _RTOL_FLOOR = 100 * float(np.finfo(float).eps)  # scipy's smallest rtol
@@ -324,10 +329,7 @@ def _advance(system, t, y, stop, options, traj):
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
     events = events + [_step_budget(system, remaining, options, traj.deadline)]
     try:
-        rhs = system.segment_rhs(stop) if options.compiled is not False and hasattr(system, "segment_rhs") \
-            else system.rhs
-        if rhs != system.rhs:  # bound methods compare equal, never identical
-            traj.stats["path"] = "python, compiled rhs"
+        rhs = system.rhs
         sol = solve_ivp(rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
                         max_step=options.max_step, dense_output=True, events=events,
                         **jacobian_option(system, options.method, rhs, traj.stats))

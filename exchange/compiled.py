@@ -33,7 +33,7 @@ from .compiled_contact import event_states, seat_arrays
 from .compiled_inflators import INFLATOR_KINDS, lower_inflators, warn_clamped
 from .discharge import DischargeTable
 from .hosted import host_of, register
-from .law_kinks import dp_kinks, pressure_kinks
+from .lowered_switches import switch_table
 from .lowered_columns import (UNLOCKED, Tables, area_at_activation, law_parameters, law_tables,
                               liquid as liquid_columns, spline_entry)
 
@@ -49,7 +49,7 @@ LAW_KINDS = {"OrificeLaw": 0, "FabricLeakageLaw": 1, "GraefeLaw": 2, "LinearResi
 
 @dataclass
 class CompiledNetwork:
-    """A network as arrays, with its switch functions (kinds of :func:`_switches`) and their labels."""
+    """A network as arrays, with its switch functions (kinds of :func:`exchange.lowered_switches.switch_table`) and their labels."""
 
     model: tuple
     kinds: np.ndarray
@@ -73,7 +73,7 @@ class CompiledNetwork:
         model[16][:] = self.T_initial  # Newton's first guesses, as Network.reset()
         if self.host >= 0:
             host_of(self.host).error = None
-        self._load_discrete_state()
+        self.load_discrete_state()
         y0 = np.asarray(y0, dtype=float)
         if not (type(atol) is np.ndarray and atol.shape == y0.shape and atol.dtype == np.float64):
             atol = np.broadcast_to(np.asarray(atol, dtype=float), y0.shape).copy()
@@ -97,7 +97,7 @@ class CompiledNetwork:
 
         model, net = self.model, self.network
         model[16][:] = [s.temperature for s in net.last_states] if net.last_states else self.T_initial
-        self._load_discrete_state()
+        self.load_discrete_state()
         seg_end = float(seg_end)
 
         def f(t, y):
@@ -109,13 +109,52 @@ class CompiledNetwork:
             return out
         return f
 
+    def solve_ivp_system(self, near: float):
+        """This network as the system scipy's other methods integrate (:class:`exchange.lowered_system.
+        LoweredSystem`), from the network's current discrete state."""
+        from .lowered_system import LoweredSystem
+
+        return LoweredSystem(self, near)
+
+    def arm(self, t0: float, y0) -> list:
+        """From the network's discrete state, every pop vent already above its pop pressure at t0 starts its hold
+        (or pops) now, as if its pressure had just crossed it; the network takes the new state. Returns their
+        switch labels (for the event log)."""
+        from .compiled_modes import on_event
+        from .compiled_solver import switches
+
+        self.load_discrete_state()
+        M, labels, value = self.model, [], np.empty(1)
+        y0 = np.ascontiguousarray(y0, dtype=float)
+        for q in np.flatnonzero(self.kinds == 4):
+            j = int(self.exchanges[q])
+            if M[21][j] == 1 or not math.isnan(M[22][j]):
+                continue
+            switches(M, self.kinds[q:q + 1], self.exchanges[q:q + 1], float(t0), y0, math.inf, value)
+            if value[0] > 0.0:
+                on_event(M, 4, j, float(t0), y0.copy(), math.inf)
+                labels.append(self.labels[q])
+        if labels:
+            self.network.restore(self.current_mode(t0))
+        return labels
+
+    def current_mode(self, t_min: float):
+        """The network's snapshot of the discrete state now in the model arrays, for a segment from t_min [s]."""
+        from .compiled_modes import record_segment
+
+        M = self.model
+        row = np.empty((1, 6 + 3 * M[21].size))
+        code = sum(1 << j for j, e in enumerate(M[20].tolist()) if e)
+        record_segment(M, row, 0, 0, 0, float(t_min), float(t_min), code)
+        return self._mode(row[0])
+
     def failure(self) -> str:
         """Why the latest right-hand side failed: a hosted part's exception (:mod:`exchange.hosted`), else no
         temperature for a cavity's internal energy."""
         error = host_of(self.host).error if self.host >= 0 else None
         return NO_TEMPERATURE if error is None else f"{type(error).__name__}: {error}"
 
-    def _load_discrete_state(self) -> None:
+    def load_discrete_state(self) -> None:
         """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
         area intervals of the dynamic body, whether hard contact holds it (compiled_body), the piece of a volume
         spline of its displacement the segment holds, and each pop vent's
@@ -289,74 +328,6 @@ def _exchanges(net, tables, host):
     return np.array(ei, dtype=np.int64).reshape(-1, 15), np.array(ef, dtype=float).reshape(-1, 10)
 
 
-def _switches(net):
-    """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 11/12 a law's kink,
-    4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area
-    interval, 10 its turning point, 15/16 the knot above/below the piece of the volume spline it holds, 13 its seat,
-    14 a kink of the seat's force), their exchanges (a law's kink: j + ne·(row + 1); a knot: the pushed cavity;
-    the seat's kink: its index) and labels, in the order of :meth:`Network.events` (each watched
-    only in its discrete state)."""
-    kinds, js, labels = [], [], []
-
-    def add(kind, j, what):
-        kinds.append(kind)
-        js.append(j)
-        labels.append(f"{net.exchanges[j].name}:{what}")
-
-    for j, ex in enumerate(net.exchanges):
-        driven = not ex.law.prescribed  # a prescribed flux has no pressure-driven switch
-        if ex.law.pneumatic and driven:
-            add(0, j, "choke")
-        if getattr(ex.law, "orifice_join", False) and driven:
-            add(7, j, "join")
-        if driven and ex.downstream is None and not ex.two_way:
-            add(1, j, "reversal")
-        elif driven and net.can_equalise(j):
-            add(2, j, "equalise")
-            add(3, j, "release")
-        if driven:  # a law's kinks: row k of its Cd table of pressure (11) or leakage table (12), j + ne·(k + 1)
-            for kind, rows in ((11, pressure_kinks(ex.law)), (12, dp_kinks(ex.law))):
-                for k in range(len(rows)):
-                    r = k + (1 if kind == 12 else 0)  # the row of the table
-                    add(kind, j, f"kink{r}")
-                    js[-1] = j + len(net.exchanges) * (r + 1)
-        if ex.activation is not None and ex.activation.pop_pressure is not None:
-            add(4, j, "pop")
-            add(5, j, "pop-drop")
-            add(6, j, "pop-hold")
-    geometry = _geometry(net)
-    if geometry.get("body") is not None:  # the dynamic body's turning point, and its area crossings
-        kinds.append(10)
-        js.append(0)
-        labels.append(f"{net.body.name}:turn")
-        for j, area in geometry["areas"].items():
-            if area[3]:
-                add(9, j, "contact-down")
-                add(8, j, "contact-up")
-        _knot_switches(net, geometry, kinds, js, labels)
-    seat = geometry.get("contact")
-    if seat is not None:  # the seat switch of hard contact, then the kinks of the seat's force
-        name = net.contact.name
-        hard = int(seat[0][3]) == 0
-        extra = [(13, 0, f"{name}:seat")] if hard else []
-        extra += [(14, i, f"{name}:kink-{i}") for i in range(len(seat[2]))]
-        for kind, j, label in extra:
-            kinds.append(kind)
-            js.append(j)
-            labels.append(label)
-    return np.array(kinds, dtype=np.int64), np.array(js, dtype=np.int64), labels
-
-
-def _knot_switches(net, geometry, kinds, js, labels) -> None:
-    """The knots below/above (16/15) the held piece of the pushed cavity's volume spline of the body's displacement."""
-    pushed = int(geometry["body"][3])
-    if pushed >= 0 and net.cavities[pushed].name in geometry["volumes"]:
-        for kind, what in ((16, "knot-down"), (15, "knot-up")):
-            kinds.append(kind)
-            js.append(pushed)
-            labels.append(f"{net.cavities[pushed].name}:{what}")
-
-
 def _body(net) -> np.ndarray:
     """The dynamic body for :func:`exchange.compiled_body.body_rhs`: offset, mass, gravity, pushed cavity, pressure
     cavity, pressure area, stiffness, preload, turning-point speed scale, re-derivation slack [m]; offset −1:
@@ -396,5 +367,5 @@ def lower(net) -> CompiledNetwork | None:
              np.zeros(len(net.exchanges), dtype=np.int64), np.ones(len(net.exchanges), dtype=np.int64),
              np.full(len(net.exchanges), np.nan), np.zeros(len(net.exchanges), dtype=np.int64), _body(net)) \
         + seat_arrays(_geometry(net).get("contact"))
-    kinds, js, labels = _switches(net)
+    kinds, js, labels = switch_table(net, _geometry(net))
     return CompiledNetwork(model, kinds, js, labels, T0, net, host)

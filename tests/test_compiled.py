@@ -115,7 +115,7 @@ def test_the_default_path_is_compiled_and_says_so():
     assert traj.path == "compiled"
     assert traj.stats["steps"] == 3 and traj.stats["rhs_calls"] == 47  # as solve_ivp's DOP853 (docs/benchmarks.md)
     other = integrate(net, net.initial_state(), 0.0, 0.5, replace(model.options, method="RK45"))
-    assert other.path == "python"
+    assert other.path == "compiled, solve_ivp"
 
 
 def two_way_scene(folder: Path, p0: float, end: float):
@@ -444,13 +444,13 @@ def test_jitted_right_hand_side_with_pop_fabric_graefe_equals_network_rhs(tmp_pa
                                           ("airbag_impactor_dynamic", "RK45"), ("seal_vent", "BDF"),
                                           ("bag_unfold", "LSODA")])
 def test_other_methods_run_on_the_compiled_right_hand_side(name, method):
-    """solve_ivp's other methods integrate the same compiled right-hand side as DOP853 ("python, compiled rhs"),
+    """solve_ivp's other methods integrate the same compiled right-hand side as DOP853 ("compiled, solve_ivp"),
     and agree with the Python right-hand side (compiled=False) far inside the scene's rtol: identical RHS values
     give identical steps, up to round-off in the implicit methods' finite-difference Jacobians."""
     model = model_of(name)
     runs = {c: run(replace(model, options=replace(model.options, method=method, compiled=c))) for c in (None, False)}
     fast, slow = runs[None], runs[False]
-    assert fast.summary["solver"]["path"] == "python, compiled rhs"
+    assert fast.summary["solver"]["path"] == "compiled, solve_ivp"
     assert slow.summary["solver"]["path"] == "python"
     scale = np.maximum(np.max(np.abs(slow.history), axis=0), 1e-300)
     assert np.max(np.abs(fast.history - slow.history) / scale) < 100 * model.options.rtol

@@ -148,7 +148,7 @@ def test_jitted_right_hand_side_equals_network_rhs(tmp_path, kind):
 
 
 @pytest.mark.parametrize("compiled, method, path", [(None, "DOP853", "compiled"), (False, "DOP853", "python"),
-                                                    (None, "LSODA", "python, compiled rhs")])
+                                                    (None, "LSODA", "compiled, solve_ivp")])
 def test_a_clamped_temperature_is_warned_on_every_path(tmp_path, compiled, method, path):
     """An inflator pressure far too high for its mass flow: T_i held at 10⁴ K, warned (once per message) on the
     Python path, after a compiled run, and from the compiled right-hand side under solve_ivp."""

@@ -252,6 +252,6 @@ def test_other_methods_run_on_the_compiled_right_hand_side(tmp_path, name, metho
         model = law_model(tmp_path, name, to_cavity=True)
     runs = {c: run(replace(model, options=replace(model.options, method=method, compiled=c))) for c in (None, False)}
     fast, slow = runs[None], runs[False]
-    assert (fast.summary["solver"]["path"], slow.summary["solver"]["path"]) == ("python, compiled rhs", "python")
+    assert (fast.summary["solver"]["path"], slow.summary["solver"]["path"]) == ("compiled, solve_ivp", "python")
     scale = np.maximum(np.max(np.abs(slow.history), axis=0), 1e-300)
     assert np.max(np.abs(fast.history - slow.history) / scale) < 100 * model.options.rtol

@@ -132,7 +132,7 @@ def test_lsoda_runs_on_the_compiled_rhs_of_a_seat_scene():
         model.options = dataclasses.replace(model.options, method="LSODA", compiled=compiled)
         out.append(run(model))
     fast, slow = out
-    assert fast.summary["solver"]["path"] == "python, compiled rhs" and slow.summary["solver"]["path"] == "python"
+    assert fast.summary["solver"]["path"] == "compiled, solve_ivp" and slow.summary["solver"]["path"] == "python"
     assert [lb for _, lb in fast.summary["solver"]["event log"]] == [lb for _, lb in slow.summary["solver"]["event log"]]
     assert fast.summary["contact"]["seat"]["lift-offs"] >= 3
     assert peak_relative(fast, slow).max() <= 1e-6

@@ -83,7 +83,7 @@ def test_n2_blowdown_against_the_measurement(n2_run):
     assert abs(wall - 0.5 * (Tw_in[-1] + Tw_out[-1])) <= 2.0
 
 
-@pytest.mark.parametrize("method, path, close", [("LSODA", "python, compiled rhs", 1e-11),
+@pytest.mark.parametrize("method, path, close", [("LSODA", "compiled, solve_ivp", 1e-11),
                                                   ("DOP853", "compiled", 1e-9)])
 def test_real_gas_runs_on_the_compiled_path(n2_run, method, path, close):
     """The N2 discharge (real-gas cavity, wall, real-gas nozzle: hosted parts, exchange/hosted.py) lowers; on the
