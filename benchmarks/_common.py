@@ -32,7 +32,7 @@ if str(ROOT) not in sys.path:  # tests.closed_forms holds the references
     sys.path.insert(0, str(ROOT))
 
 from cases.model.build import build_model
-from cases.run.runner import compiled_readback, history_rows, peak_pressure
+from cases.results.readback import cavity_peaks, history_rows
 from cases.scene.files import load_scene
 from cavity.integration import SolverError, integrate
 
@@ -148,9 +148,16 @@ def fresh_state(model) -> np.ndarray:
     y0 = net.initial_state()
     if hasattr(net, "reset"):
         net.reset()
-    if hasattr(net, "begin_segment"):
-        net.begin_segment(0.0, math.inf)  # no segment end: inputs read at t itself
     return y0
+
+
+def engine_rhs(model, y0):
+    """The engine's compiled right-hand side as a Python callable f(t, y), in the t = 0 discrete state with no
+    segment end (inputs read at t itself): what a loop outside the engine (fixed steps, one solve_ivp call
+    without stops) integrates."""
+    system = model.network.engine().solve_ivp_system(0.0)
+    system.begin_segment(0.0, math.inf, y0)
+    return system.rhs
 
 
 def pressures(model, times, ys, cavity: int = 0) -> np.ndarray:
@@ -222,7 +229,7 @@ def _converged_case(name, scene, model, out_t, rtol):
         y0 = fresh_state(model)
         traj = integrate(model.network, y0, 0.0, scene.time.end, options_for(model, method, rtol))
         p = pressures(model, out_t, traj.sample(out_t))
-        peak, t_peak = peak_pressure(model, traj, 0)
+        peak, t_peak = cavity_peaks(model, traj)[0]
         return traj, p, peak, t_peak
 
     traj, p, peak, t_peak = solve(scene.solver.method)
@@ -277,18 +284,17 @@ def warm_up(case: Case) -> None:
 
 
 def run_ventsim(case: Case, method: str, rtol: float, label: str | None = None, with_output: bool = False,
-                compiled: bool | None = None) -> Run:
+                integrator: str = "compiled") -> Run:
     """ventsim's integrator (breakpoints, switch functions, dense output) with a scipy method.
 
-    ``compiled``: SolverOptions.compiled (None: the default, the compiled DOP853 path where the network can be
-    lowered; False: the Python solve_ivp path). ``extra["path"]`` says which ran.
+    ``integrator``: SolverOptions.integrator ("compiled": DOP853 in one numba call; "scipy": solve_ivp steps the
+    engine's kernels). ``extra["path"]`` says which ran.
 
     With ``with_output``, ``extra["wall_with_output"]`` is the wall time of the solve plus the history (every
-    column of history.csv) at every time of the grid, built as ``ventsim run`` builds it (one compiled call on the
-    compiled path, row by row otherwise).
+    column of history.csv) at every time of the grid, built as ``ventsim run`` builds it (one compiled call).
     """
     model, grid = case.model, case.grid
-    opts = replace(options_for(model, method, rtol), compiled=compiled)
+    opts = replace(options_for(model, method, rtol), integrator=integrator)
 
     def solve():
         y0 = fresh_state(model)
@@ -303,7 +309,7 @@ def run_ventsim(case: Case, method: str, rtol: float, label: str | None = None, 
     if with_output:
         def solve_and_sample():  # the whole history at the grid, as ventsim run builds it (compiled read-back)
             tr = solve()
-            return history_rows(model, tr, grid, compiled_readback(model, tr))
+            return history_rows(model, tr, grid)
 
         extra["wall_with_output"], _ = best_of(solve_and_sample)
     p = pressures(model, grid, traj.sample(grid))
@@ -314,13 +320,13 @@ def run_ventsim(case: Case, method: str, rtol: float, label: str | None = None, 
 
 
 def run_plain_scipy(case: Case, method: str, rtol: float) -> Run:
-    """One solve_ivp call over the whole run on the network's right-hand side: no stops, no switches."""
+    """One solve_ivp call over the whole run on the engine's right-hand side: no stops, no switches."""
     model, grid = case.model, case.grid
     opts = options_for(model, method, rtol)
 
     def solve():
         y0 = fresh_state(model)
-        return solve_ivp(model.network.rhs, (0.0, case.t_end), y0, method=method, rtol=rtol, atol=opts.atol,
+        return solve_ivp(engine_rhs(model, y0), (0.0, case.t_end), y0, method=method, rtol=rtol, atol=opts.atol,
                          dense_output=True)
 
     try:

@@ -1,9 +1,10 @@
-"""The peers of the integrator benchmarks: fixed-step explicit schemes (Python and compiled right-hand side) and
+"""The peers of the integrator benchmarks: fixed-step explicit schemes (a Python loop and a compiled loop over the
+engine's right-hand side) and
 Cantera's ``ReactorNet``; each runner returns a :class:`_common.Run` like the ventsim runners of :mod:`_common`.
 
 - :func:`run_fixed_step`: forward Euler or Heun at a fixed step, as explicit finite-element codes advance the gas
-  with the structure's step (benchmark-only code; no error control); :func:`run_fixed_compiled` the same on the
-  compiled right-hand side the default path uses (the fair baseline).
+  with the structure's step (benchmark-only code; no error control), a Python loop calling the engine's compiled
+  right-hand side; :func:`run_fixed_compiled` the same loop compiled (the fair baseline).
 - :func:`run_cantera`: Cantera's ``ReactorNet`` (CVODES BDF) with a constant-cp N2 phase identical to the scenes'
   (custom element weight so that M = 0.0280134 kg/mol), a ``Valve`` whose ``pressure_function`` is the orifice
   law read from the upstream reactor, a ``MassFlowController`` for the inflator, a moving ``Wall`` for the volume
@@ -16,7 +17,7 @@ import time
 
 import numpy as np
 
-from _common import Case, Run, best_of, errors, fresh_state, pressures
+from _common import Case, Run, best_of, engine_rhs, errors, fresh_state, pressures
 from exchange.orifice import orifice_mass_flow
 
 try:  # Cantera is a peer for benchmarks, not a dependency
@@ -77,16 +78,16 @@ def run_fixed_compiled(case: Case, n_steps: int, scheme: str = "euler") -> Run:
 
 
 def run_fixed_step(case: Case, n_steps: int, scheme: str = "euler") -> Run:
-    """:func:`fixed_step` on the network; states between steps by linear interpolation (below the scheme's error)."""
+    """:func:`fixed_step` on the engine's right-hand side; states between steps by linear interpolation (below the
+    scheme's error)."""
     model, grid = case.model, case.grid
-    net = model.network
     calls = n_steps * (1 if scheme == "euler" else 2)
 
     def solve():
         y0 = fresh_state(model)
         try:
             with np.errstate(all="ignore"):
-                return fixed_step(net.rhs, y0, case.t_end, n_steps, scheme)
+                return fixed_step(engine_rhs(model, y0), y0, case.t_end, n_steps, scheme)
         except (ArithmeticError, ValueError) as exc:
             return exc
 

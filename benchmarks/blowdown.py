@@ -46,8 +46,8 @@ def main() -> int:
     print(f"case: {case.scene.path.relative_to(C.ROOT)}; reference: {case.reference}; "
           f"error on {len(case.times)} output times\n")
     C.warm_up(case)  # numba compilation or cache load, outside the timings (Cantera is warmed by its repeats)
-    runs = [C.run_ventsim(case, method, rtol, label=f"ventsim ({method}, {'compiled' if c is None else 'Python'})",
-                          with_output=True, compiled=c) for c in (None, False) for rtol in RTOLS]
+    runs = [C.run_ventsim(case, method, rtol, label=f"ventsim ({method}, {i})", with_output=True, integrator=i)
+            for i in ("compiled", "scipy") for rtol in RTOLS]
     if P.CANTERA is not None:
         runs += [P.run_cantera(case, rtol) for rtol in RTOLS]
     else:

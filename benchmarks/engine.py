@@ -1,20 +1,33 @@
-"""One engine against the previous one: every library case solved on the compiled path and on the Python
-(``solve_ivp``) path at the same rtol, in the same run.
+"""One engine against the previous one: every library case on this engine and on the previous Python engine, at
+the same rtol, in the same run.
+
+This engine: the compiled DOP853 (the default) and scipy's DOP853 stepping the same compiled kernels
+(``integrator = "scipy"``). The previous engine, the Python right-hand side that ran every scene with bodies before
+issue 16, is not on main any more: it is measured from the last commit that had it (``--baseline``, default
+c378c91), exported with ``git archive`` into a temporary folder and run there in a child process
+(``compiled=False``, its own code and numba cache; its first run compiles the laws it calls, outside the timings).
+``--no-baseline`` skips it.
 
 Timed is ``cases.run.runner.run`` (the integration and the history read-back; the model is built once, outside),
-best of ``--repeat`` after a warm-up that pays for numba's loading. The error column is the compiled run's largest
-relative difference from the Python run over every history column (scaled by the column's peak), so the ratio is
-at equal results. Cases that do not lower run on the Python path only ("python" in the path column, no ratio).
+best of ``--repeat`` after a warm-up. "difference": the largest relative difference of the scipy-integrator run
+and of the previous engine's run from the compiled run over every history column (scaled by the column's peak).
 
-``--ladder``: wall time against error instead, per case and per path, on the rtol ladder 1e-4 … 1e-10; the
-error is the largest relative difference (as above) from a reference run at rtol 1e-12 with steps of at most
-t_end/4000 (compiled where the case lowers), each time the fastest of ``--repeat`` runs.
+``--ladder``: wall time against error instead, per case and integrator, on the rtol ladder 1e-4 … 1e-10; the error
+is the largest relative difference (as above) from a reference run at rtol 1e-12 with steps of at most t_end/4000.
 
 Run: python benchmarks/engine.py [--repeat 5] [--cases airbag_impactor airbag_impactor_dynamic] [--ladder]
+     [--baseline REV | --no-baseline]
 """
 import argparse
+import json
+import os
+import subprocess
+import sys
+import tarfile
+import tempfile
 import time
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
@@ -23,9 +36,34 @@ from cases.run.library import CASES, HERE
 from cases.run.runner import run
 from cases.scene.files import load_scene
 
+ROOT = Path(__file__).resolve().parents[1]
+BASELINE = "c378c91"  # the last commit with the Python right-hand side (compiled=False)
+LADDER = (1e-4, 1e-6, 1e-8, 1e-10)
 
-def best(model, compiled: bool, repeat: int):
-    m = replace(model, options=replace(model.options, compiled=compiled))
+#: run in the previous engine's tree: best wall time and history of each case on its Python path, as JSON
+PREVIOUS = r"""
+import json, sys, time
+from dataclasses import replace
+from cases.model.build import build_model
+from cases.run.library import CASES, HERE
+from cases.run.runner import run
+from cases.scene.files import load_scene
+out = {}
+for name in sys.argv[2:]:
+    model = build_model(load_scene(HERE / CASES[name]))
+    m = replace(model, options=replace(model.options, compiled=False))
+    r = run(m)
+    best = float("inf")
+    for _ in range(int(sys.argv[1])):
+        t0 = time.perf_counter(); r = run(m); best = min(best, time.perf_counter() - t0)
+    out[name] = {"wall": best, "path": r.summary["solver"]["path"], "rhs": r.summary["solver"]["rhs_calls"],
+                 "history": r.history.tolist()}
+print(json.dumps(out))
+"""
+
+
+def best(model, repeat: int, **options):
+    m = replace(model, options=replace(model.options, **options))
     results = run(m)  # warm-up
     wall = []
     for _ in range(repeat):
@@ -45,30 +83,35 @@ def difference(a, b) -> float:
     return worst
 
 
-LADDER = (1e-4, 1e-6, 1e-8, 1e-10)
+def previous_engine(rev: str, names, repeat: int) -> dict:
+    """{case: {"wall", "path", "rhs", "history"}} of the previous engine at ``rev`` (see the module docstring)."""
+    with tempfile.TemporaryDirectory(prefix="ventsim-previous-") as tmp:
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", "--format=tar", rev], capture_output=True,
+                                 check=True).stdout
+        tar_path = Path(tmp) / "tree.tar"
+        tar_path.write_bytes(archive)
+        with tarfile.open(tar_path) as tar:
+            tar.extractall(tmp, filter="data")
+        out = subprocess.run([sys.executable, "-c", PREVIOUS, str(repeat), *names], cwd=tmp, env={**os.environ, "PYTHONPATH": tmp},
+                             capture_output=True, text=True, check=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
 
 
 def ladder(names, repeat: int) -> None:
-    """Wall time [s] and error against an rtol-1e-12 reference, per case, rtol and path."""
-    print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'error':>9} {'python [s]':>11} {'error':>9} {'ratio':>7}")
+    """Wall time [s] and error against an rtol-1e-12 reference, per case, rtol and integrator."""
+    print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'error':>9} {'scipy [s]':>10} {'error':>9} {'ratio':>7}")
     for name in names:
         model = build_model(load_scene(HERE / CASES[name]))
-        lowers = model.network.compiled_solver() is not None and model.options.method == "DOP853"
         at = lambda rtol: replace(model, options=replace(model.options, rtol=rtol))  # noqa: E731
         # rtol 1e-12 alone is not a safe reference: DOP853's error estimate can vanish by accident on one step,
         # which is then accepted ~1e4 times less accurate than asked (seen on bag_unfold); steps of at most
         # t_end/4000 make such a step short enough not to matter
-        ref_options = replace(at(1e-12).options, compiled=lowers, max_step=model.scene.time.end / 4000)
-        reference = run(replace(model, options=ref_options)).history
+        reference = run(replace(model, options=replace(at(1e-12).options, max_step=model.scene.time.end / 4000)))
         for rtol in LADDER:
-            slow, res = best(at(rtol), False, repeat)
-            cells = ["-", "-"]
-            if lowers:
-                fast, fres = best(at(rtol), True, repeat)
-                cells = [f"{fast:.4f}", f"{difference(fres.history, reference):.1e}"]
-            ratio = f"{slow / fast:>6.1f}x" if lowers else "-"
-            print(f"{name:<26} {rtol:>7.0e} {cells[0]:>12} {cells[1]:>9} {slow:>11.4f} "
-                  f"{difference(res.history, reference):>9.1e} {ratio:>7}")
+            fast, fres = best(at(rtol), repeat)
+            slow, sres = best(at(rtol), repeat, integrator="scipy")
+            print(f"{name:<26} {rtol:>7.0e} {fast:>12.4f} {difference(fres.history, reference.history):>9.1e} "
+                  f"{slow:>10.4f} {difference(sres.history, reference.history):>9.1e} {slow / fast:>6.1f}x")
 
 
 def main():
@@ -76,23 +119,25 @@ def main():
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--cases", nargs="+", default=list(CASES))
     ap.add_argument("--ladder", action="store_true", help="wall time against error on the rtol ladder")
+    ap.add_argument("--baseline", default=BASELINE, help="git revision of the previous engine")
+    ap.add_argument("--no-baseline", action="store_true", help="skip the previous engine")
     args = ap.parse_args()
     if args.ladder:
         return ladder(args.cases, args.repeat)
-    print(f"{'case':<26} {'rtol':>7} {'path':>9} {'compiled [s]':>12} {'python [s]':>11} {'ratio':>7} "
-          f"{'RHS calls':>10} {'difference':>10}")
+    previous = {} if args.no_baseline else previous_engine(args.baseline, args.cases, args.repeat)
+    print(f"previous engine: {'skipped' if args.no_baseline else args.baseline + ' (Python right-hand side)'}")
+    print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'scipy [s]':>10} {'previous [s]':>12} {'speed-up':>8} "
+          f"{'RHS calls':>10} {'diff scipy':>10} {'diff prev':>10}")
     for name in args.cases:
         model = build_model(load_scene(HERE / CASES[name]))
-        slow, ref = best(model, False, args.repeat)
-        fast_ok = model.network.compiled_solver() is not None and model.options.method == "DOP853"
-        if not fast_ok:
-            print(f"{name:<26} {model.options.rtol:>7.0e} {'python':>9} {'-':>12} {slow:>11.4f} {'-':>7} "
-                  f"{ref.summary['solver']['rhs_calls']:>10} {'-':>10}")
-            continue
-        fast, res = best(model, True, args.repeat)
-        print(f"{name:<26} {model.options.rtol:>7.0e} {res.summary['solver']['path']:>9} {fast:>12.4f} "
-              f"{slow:>11.4f} {slow / fast:>6.1f}x {res.summary['solver']['rhs_calls']:>10} "
-              f"{difference(res.history, ref.history):>10.1e}")
+        fast, res = best(model, args.repeat)
+        slow, sres = best(model, args.repeat, integrator="scipy")
+        prev = previous.get(name)
+        cells = ["-", "-", "-"] if prev is None else [
+            f"{prev['wall']:.4f}", f"{prev['wall'] / fast:.1f}x", f"{difference(prev['history'], res.history):.1e}"]
+        print(f"{name:<26} {model.options.rtol:>7.0e} {fast:>12.4f} {slow:>10.4f} {cells[0]:>12} {cells[1]:>8} "
+              f"{res.summary['solver']['rhs_calls']:>10} {difference(sres.history, res.history):>10.1e} "
+              f"{cells[2]:>10}")
 
 
 if __name__ == "__main__":

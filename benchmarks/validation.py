@@ -29,7 +29,6 @@ import os
 import subprocess
 import sys
 import time
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -70,17 +69,14 @@ def measured(stem, gas, wall) -> dict:
     return {k: v for k, v in out.items() if v is not None}
 
 
-def run_ventsim(scene: str, repeats: int = 10, compiled=None) -> dict:
-    """ventsim's run of ``scene``: on the compiled engine (``compiled`` None, the default) or on the Python
-    right-hand side (False, the previous engine: the same-run baseline)."""
+def run_ventsim(scene: str, repeats: int = 10) -> dict:
+    """ventsim's run of ``scene`` (best of ``repeats``)."""
     path = HERE / f"{scene}.toml"
     build_model(load_scene(path))  # loads CoolProp's fluid and fits the species once
     wall = cpu = float("inf")
     for _ in range(repeats):
         start, start_cpu = time.perf_counter(), time.process_time()
-        model = build_model(load_scene(path))
-        model.options = replace(model.options, compiled=compiled)
-        r = run(model)
+        r = run(build_model(load_scene(path)))
         wall, cpu = min(wall, time.perf_counter() - start), min(cpu, time.process_time() - start_cpu)
     return {"time": r.column("time"), "p": r.column("vessel.pressure"), "T": r.column("vessel.temperature"),
             "T_wall": r.column("vessel.wall_temperature"), "wall time [s]": wall, "cpu time [s]": cpu,
@@ -161,13 +157,11 @@ def main(argv=None) -> int:
     print("| case | code | p RMS [bar] | p max [bar] | T RMS [K] | T max [K] | T min (max) computed [K] | "
           "T min measured [K] | wall T RMS [K] | CPU time [s] | wall time [s] |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
-    results, speed, engines = [], [], []
+    results, speed = [], []
     for scene, setup, stem, gas, wall in CASES:
         meas = measured(stem, gas, wall)
-        ours, before = run_ventsim(scene), run_ventsim(scene, compiled=False)
+        ours = run_ventsim(scene)
         print(rows_of(scene, f"ventsim ({ours['rhs']} RHS, {ours['path']})", ours, meas))
-        print(rows_of(scene, f"ventsim ({before['rhs']} RHS, {before['path']})", before, meas))
-        engines.append((scene, before["cpu time [s]"] / ours["cpu time [s]"]))
         theirs = run_hyddown(exe, setup) if exe else None
         if theirs is not None:
             print(rows_of(scene, "HydDown", theirs, meas))
@@ -178,9 +172,6 @@ def main(argv=None) -> int:
     for scene, cpu, wall, dev in speed:
         print(f"\n{scene}: HydDown / ventsim CPU time {cpu:.1f}x, wall time {wall:.1f}x; largest "
               f"|p_ventsim - p_HydDown| {dev:.3f} bar", end="")
-    for scene, ratio in engines:
-        print(f"\n{scene}: Python right-hand side / compiled engine (hosted CoolProp calls) CPU time {ratio:.2f}x",
-              end="")
     print(f"\n\nplot: {plot(results, out)}")
     return 0
 

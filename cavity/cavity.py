@@ -1,4 +1,5 @@
-"""A uniform-pressure gas cavity: its definition, its state from the ODE unknowns, and its own rates.
+"""A uniform-pressure gas cavity: its definition and its unknowns (the compiled engine derives its state and rates:
+:func:`exchange.compiled_rhs.states`, :func:`exchange.compiled_rhs.network_rhs`).
 
 Unknowns of one cavity: the mass of every species [kg] and, unless isothermal, the internal energy U [J].
 Energy balance of the control volume (open system, moving boundary):
@@ -15,10 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .gas import GasModel, Mixture
-from .tolerances import R_UNIVERSAL
+from .gas import GasModel
 
-__all__ = ["Cavity", "CavityState", "ENERGY_MODELS"]
+__all__ = ["Cavity", "ENERGY_MODELS"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
 
@@ -92,50 +92,3 @@ class Cavity:
         if self.energy != "heat_loss":
             return 0.0
         return self.heat_transfer_coefficient * self.heat_transfer_area * (T - self.ambient_temperature)
-
-
-@dataclass(slots=True)
-class CavityState:
-    """The gas state of a cavity at one instant (derived from the unknowns; not stored in the ODE)."""
-
-    masses: np.ndarray
-    mixture: Mixture
-    temperature: float
-    volume: float
-    volume_rate: float
-    pressure: float
-    fluid = None  # an ideal-gas mixture: no real-gas equation of state (cavity.realgas_cavity.RealGasState has one)
-    extra_rates = None  # no unknowns after U
-
-    @classmethod
-    def of(cls, cavity: Cavity, gas: GasModel, t: float, unknowns, T_guess: float) -> "CavityState":
-        """State of ``cavity`` at time t from its slice of the ODE unknowns.
-
-        Masses that integration error drove slightly negative are clipped at zero for the equation of state.
-        """
-        ns = len(cavity.initial_masses)
-        masses = np.maximum(unknowns[:ns], 0.0)
-        mix = gas._mixture_of(masses.tolist())
-        energy = cavity.energy
-        if energy == "isothermal":
-            T = cavity.initial_temperature
-        elif mix.moles > 0.0:
-            T = mix.temperature(float(unknowns[ns]), T_guess)
-        else:
-            T = T_guess
-        volume = cavity.volume
-        V = volume(t) + cavity.added_volume
-        V_min = cavity.minimum_volume
-        V_eos = V if V > V_min else V_min  # volume.effective_volume(V, V_min), inlined
-        rate = volume.rate(t) if V > V_min else 0.0
-        return cls(masses, mix, T, V, rate, mix.moles * R_UNIVERSAL * T / V_eos)
-
-    @property
-    def density(self) -> float:
-        """Mass over volume [kg/m^3]."""
-        return self.mixture.mass / self.volume
-
-    @property
-    def specific_enthalpy(self) -> float:
-        """Enthalpy per unit mass of the cavity gas [J/kg]."""
-        return self.mixture.enthalpy(self.temperature) / self.mixture.mass if self.mixture.mass > 0 else 0.0

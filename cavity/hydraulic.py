@@ -14,9 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .volume import effective_volume
 
-__all__ = ["HydraulicCavity", "HydraulicState", "hydraulic_pressure"]
+__all__ = ["HydraulicCavity", "hydraulic_pressure"]
 
 
 @njit(cache=True, inline="always")
@@ -96,32 +95,3 @@ class HydraulicCavity:
 
     def heat_loss(self, T: float) -> float:
         return 0.0
-
-    def state(self, t: float, unknowns) -> "HydraulicState":
-        m = max(float(unknowns[0]), 0.0)
-        V = self.total_volume(t)
-        V_eos = effective_volume(V, self.minimum_volume)
-        T = self.temperature(t)
-        rho_ref = self.reference_density * math.exp(-self.thermal_expansion * (T - self.reference_temperature))
-        rho = m / V_eos
-        p = hydraulic_pressure(rho, rho_ref, self.bulk_modulus, self.reference_pressure) if rho > 0 else -math.inf
-        rate = self.volume.rate(t) if V > self.minimum_volume else 0.0
-        return HydraulicState(np.array([m]), T, V, rate, p, rho)
-
-
-@dataclass
-class HydraulicState:
-    """State of a hydraulic cavity at one instant."""
-
-    masses: np.ndarray
-    temperature: float
-    volume: float
-    volume_rate: float
-    pressure: float
-    density: float
-    mixture = None
-    fluid = None
-
-    @property
-    def mass(self) -> float:
-        return float(self.masses[0])

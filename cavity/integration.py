@@ -1,15 +1,18 @@
-"""Integration of a cavity system: scipy's ``solve_ivp`` between discontinuities, restarted after each one.
+"""Integration of a cavity system: between discontinuities, restarted after each one.
 
 The model is not known here: a system gives a right-hand side, the times where its inputs have kinks
 (table breakpoints, start times: known in advance), and state events (a vent popping, a node touching) found by
 root finding on the dense output. The solver integrates up to each breakpoint or event and restarts after it,
 so no step ever straddles a discontinuity.
 
-Two paths run the same algorithm. A system that can lower itself to arrays (``compiled_solver()``, e.g. a plain
-``exchange.network.Network``) runs, with DOP853 (the default), in one numba call (:mod:`cavity.rk_compiled`,
-``exchange.compiled_solver``): the same steps, switches and restarts as solve_ivp's DOP853, 20–40× faster
-(docs/benchmarks.md), except that a trial step whose stage finds no gas state is retried shorter where solve_ivp
-stops. Any other system or method runs through ``solve_ivp``. ``Trajectory.path`` says which ran.
+A cavity network lowers itself to arrays (``compiled_solver()``: :class:`exchange.compiled.CompiledNetwork`), and
+one engine runs it: with DOP853 (the default) the whole integration is one numba call (:mod:`cavity.rk_compiled`,
+``exchange.compiled_solver``: the same steps, switches and restarts as solve_ivp's DOP853, except that a trial step
+whose stage finds no gas state is retried shorter where solve_ivp stops); with scipy's other methods (LSODA, Radau,
+BDF, RK45, RK23) ``solve_ivp`` steps the same compiled right-hand side, switch functions and switch actions
+(:mod:`exchange.lowered_system`), segment by segment. A network that does not lower is refused with the reason.
+Any other system (a plain object with ``rhs``, ``events``...) runs through ``solve_ivp`` as it is.
+``Trajectory.path`` says which ran.
 """
 from __future__ import annotations
 
@@ -75,14 +78,12 @@ class SolverOptions:
     max_steps : int
         Steps after which the run is declared stuck (no hang on a stiff or chattering scene).
     max_wall : float
-        Wall time [s] after which the run is stopped (Python path: checked every step; the compiled path is
-        bounded by ``max_steps`` and checked when it returns).
-    compiled : bool or None
-        Run the compiled DOP853 path (:mod:`cavity.rk_compiled`; the system lowers itself with
-        ``compiled_solver()``): None (default) when the method is DOP853 and the system can be lowered, else the
-        Python path; True: require it (error if the system cannot be lowered); False: never. With another method
-        a system that lowers runs through ``solve_ivp`` on the compiled right-hand side (``segment_rhs``;
-        ``solver.path`` "compiled, solve_ivp"), unless ``compiled`` is False.
+        Wall time [s] after which the run is stopped (scipy's methods: checked every step; the compiled DOP853
+        looks at the clock every 1,024 steps).
+    integrator : str
+        ``"compiled"`` (default): DOP853 runs as one numba call; ``"scipy"``: ``solve_ivp`` steps the same compiled
+        right-hand side and switches with DOP853 too (a second implementation of the stepping and the event
+        location, to cross-check a run). The other methods always step through ``solve_ivp``.
     """
 
     method: str = "DOP853"
@@ -91,13 +92,15 @@ class SolverOptions:
     max_step: float = math.inf
     max_steps: int = 2_000_000
     max_wall: float = math.inf
-    compiled: bool | None = None
+    integrator: str = "compiled"
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"solver method must be one of {', '.join(METHODS)}; got {self.method!r}")
         if not (0.0 < self.rtol < 1.0):
             raise ValueError(f"rtol must be in (0, 1), got {self.rtol!r}")
+        if self.integrator not in ("compiled", "scipy"):
+            raise ValueError(f"integrator must be 'compiled' or 'scipy'; got {self.integrator!r}")
         if not self.max_wall > 0:
             raise ValueError(f"max_wall must be > 0 [s], got {self.max_wall!r}")
 
@@ -124,13 +127,14 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
     """
     stops = sorted({float(b) for b in system.breakpoints if t0 < b < t1} | {t1})
     fast = _compiled_system(system, options)
-    if fast is not None and options.method != "DOP853":  # scipy's method on the compiled engine
+    compiled = options.method == "DOP853" and options.integrator == "compiled"
+    if fast is not None and not compiled:  # scipy's method on the compiled engine
         network, system = system, fast.solve_ivp_system(SWITCH_NEAR_ZERO_PER_RTOL * options.rtol)
     y0 = np.asarray(y0, dtype=float)
     arm = getattr(fast if fast is not None else system, "arm", None)
     armed = [(float(t0), label) for label in arm(t0, y0)] if arm is not None else []
     start = _time.perf_counter()
-    if fast is not None and options.method == "DOP853":
+    if fast is not None and compiled:
         traj = _integrate_compiled(system, fast, y0, t0, stops, options)
         traj.events[:0] = armed
         traj.stats["events"] += len(armed)
@@ -158,17 +162,19 @@ def integrate(system, y0, t0: float, t1: float, options: SolverOptions, *, progr
         bar.close()
     if fast is not None and traj.modes:  # the discrete state at the end, as the compiled DOP853 leaves it
         network.restore(traj.modes[-1])
+        fast.load_discrete_state()
     return traj
 
 
 def _compiled_system(system, options):
-    """The system lowered for the compiled path, or None when the Python path runs (see SolverOptions.compiled)."""
-    if options.compiled is False:
-        return None
+    """The network lowered for the compiled engine (``compiled_solver()``), None for a system that does not lower
+    itself; a SolverError for a network that cannot be lowered, with the reason."""
     lower = getattr(system, "compiled_solver", None)
-    fast = lower() if lower is not None else None
-    if fast is None and options.compiled:
-        raise SolverError(f"the compiled path cannot run {type(system).__name__}: "
+    if lower is None:
+        return None
+    fast = lower()
+    if fast is None:
+        raise SolverError(f"the engine cannot run {type(system).__name__}: "
                           f"{getattr(system, 'compiled_unsupported', lambda: 'no compiled_solver()')()}")
     return fast
 
@@ -187,7 +193,7 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
         raise SolverError(f"the compiled DOP853 failed ({type(exc).__name__}: {exc}) from t = {t0:.9g} s; "
                           f"{system.describe(t0, np.asarray(y0, dtype=float))}; inputs this extreme (a rate "
                           f"or an area many orders too large?) stop it") from None
-    if status:  # the Python path's messages
+    if status:  # the messages scipy's methods give
         state = system.describe(t, y)
         stiff = stiffness_advice(options.method)
         exc = SolverError({1: f"more than {options.max_steps} steps before t = {t:.9g} s; {state}{stiff}",
@@ -222,7 +228,7 @@ def _compiled_trajectory(system, fast, t0, recs, segs, evs, st) -> Trajectory:
         traj.segments.append(DenseSteps(recs[int(first):int(end)], t_min, t_max))
         traj.modes.append(fast.segment_mode(code))
     if traj.modes and system.snapshot() != traj.modes[-1]:
-        system.restore(traj.modes[-1])  # the discrete state at the end, as the Python path leaves it
+        system.restore(traj.modes[-1])  # the discrete state at the end
     traj.step_times = [float(t0)] + recs[:, 2].tolist()
     labels = fast.labels
     traj.events = [(te, labels[int(q)]) for te, q, _ in evs.tolist()]

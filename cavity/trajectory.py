@@ -29,13 +29,13 @@ class Trajectory:
 
     def __call__(self, t: float) -> np.ndarray:
         """State at time t (right limit at a breakpoint)."""
-        return self.segments[int(self._index(t))](t)
+        return self.segments[int(self.segment_index(t))](t)
 
     def mode_at(self, t: float):
         """The discrete state (``system.snapshot()``) in force at time t (right limit at a switch)."""
-        return self.modes[int(self._index(t))]
+        return self.modes[int(self.segment_index(t))]
 
-    def _index(self, t):
+    def segment_index(self, t):
         """The segment holding t (a time or an array); the segments' starts are kept while none is added."""
         if len(self.__dict__.get("_starts", ())) != len(self.segments):
             self._starts = np.array([s.t_min for s in self.segments])
@@ -44,7 +44,7 @@ class Trajectory:
     def sample(self, times) -> np.ndarray:
         """States at ``times`` (sorted), shape (len(times), n)."""
         times = np.asarray(times, dtype=float)
-        idx = self._index(times)
+        idx = self.segment_index(times)
         out = np.empty((times.size, self.segments[0](self.segments[0].t_min).size))
         for i in np.unique(idx):
             sel = idx == i

@@ -2,15 +2,17 @@
 
 Abaqus *FLUID EXCHANGE ACTIVATION (amplitude, DELTA LEAKAGE AREA), Radioss vents (open at Tstart or once
 p > p_ext + ΔPdef has held for ΔtPdef; close at Tstop), LS-DYNA PPOP (opens at a gauge pressure, stays open).
-The discrete part (armed → holding → open) lives in the network; this module holds the definition and the pure
-area rule.
+The discrete part (armed → holding → open) is the compiled engine's (:mod:`exchange.compiled_modes`); this module
+holds the definition and the area rule, which the engine calls.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
-__all__ = ["Activation", "activated_area", "arm_pop_vents"]
+from numba import njit
+
+__all__ = ["Activation", "activated_area"]
 
 
 @dataclass(frozen=True)
@@ -49,14 +51,16 @@ class Activation:
         return tuple(pts)
 
 
-def activated_area(area: float, t: float, activation: Activation | None, popped: bool,
-                   area_at_activation: float = 0.0) -> float:
+@njit(cache=True, inline="always")
+def activated_area(area, t, open_time, close_time, shut, amplitude, area_at_activation):
     r"""Flow area of an exchange after activation [m^2].
 
-    .. math:: A_{flow} = a(t)\,\big(A - A_{act}\big) \text{ if open, else } 0
+    .. math:: A_{flow} = a(t)\,\max\big(A - A_{act},\, 0\big) \quad \text{if } t_{open} \le t < t_{close}
+              \text{ and not shut, else } 0
 
-    with :math:`a(t)` the amplitude and :math:`A_{act}` the area at activation when DELTA LEAKAGE AREA is set
-    (clipped at zero).
+    with :math:`a(t)` the amplitude and :math:`A_{act}` the area when the exchange opened (Abaqus DELTA LEAKAGE
+    AREA; 0 without it, when the clip changes nothing). A pop vent is shut until its pop condition has been met
+    (Radioss ΔPdef held for ΔtPdef, LS-DYNA PPOP); it then stays open.
 
     Parameters
     ----------
@@ -64,43 +68,26 @@ def activated_area(area: float, t: float, activation: Activation | None, popped:
         Current (leakage) area [m^2].
     t : float
         Time [s].
-    activation : Activation or None
-        None: always open, full area.
-    popped : bool
-        Whether the pop condition has been met (ignored without a pop pressure).
+    open_time, close_time : float
+        The window [s] (−inf, inf: none).
+    shut : bool
+        A pop vent whose pop condition has not been met.
+    amplitude : float
+        a(t) [-] (1 without an amplitude table).
     area_at_activation : float
-        Area when the exchange opened [m^2] (used with ``delta_area``).
+        A_act [m^2].
 
     Examples
     --------
-    >>> activated_area(2.0, 0.5, Activation(open_time=1.0), popped=False)
+    >>> activated_area(2.0, 0.5, 1.0, math.inf, False, 1.0, 0.0)
     0.0
-    >>> activated_area(2.0, 1.5, Activation(open_time=1.0, close_time=2.0), popped=False)
+    >>> activated_area(2.0, 1.5, 1.0, 2.0, False, 1.0, 0.0)
     2.0
-    >>> activated_area(2.0, 0.1, Activation(pop_pressure=5e4), popped=True)
-    2.0
+    >>> activated_area(2.0, 0.1, -math.inf, math.inf, True, 1.0, 0.0)
+    0.0
+    >>> activated_area(2.0, 0.1, -math.inf, math.inf, False, 0.5, 0.5)
+    0.75
     """
-    if activation is None:
-        return area
-    if not (activation.open_time <= t < activation.close_time):
+    if shut or not (open_time <= t < close_time):
         return 0.0
-    if activation.pop_pressure is not None and not popped:
-        return 0.0
-    a = activation.amplitude(t) if activation.amplitude is not None else 1.0
-    if activation.delta_area:
-        area = max(area - area_at_activation, 0.0)
-    return a * area
-
-
-def arm_pop_vents(net, t: float, y) -> list:
-    """:meth:`Network.arm`: at the start of a run, every pop vent already above its pop pressure starts its hold (or opens) now,
-    as if its pressure had just crossed it; returns the labels of these pops (for the event log)."""
-    labels = []
-    for j, ex in enumerate(net.exchanges):
-        act = ex.activation
-        if act is None or act.pop_pressure is None or net.popped[j] or net.holding_since[j] is not None:
-            continue
-        if net._pop_switch(t, y, j) > 0.0:
-            net.on_event(t, y, f"{ex.name}:pop")
-            labels.append(f"{ex.name}:pop")
-    return labels
+    return amplitude * max(area - area_at_activation, 0.0)

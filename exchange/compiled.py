@@ -89,26 +89,6 @@ class CompiledNetwork:
         table[:, 4] = np.arange(len(segs))
         return out[:4] + (table,) + out[5:]
 
-    def rhs_function(self, seg_end: float):
-        """The compiled right-hand side as a Python callable ``f(t, y) -> dy`` for one segment ending at
-        ``seg_end``, in the network's current discrete state (for solve_ivp's other methods: LSODA, Radau, BDF,
-        RK45, RK23 run on the same right-hand side as the compiled DOP853)."""
-        from .compiled_solver import rhs
-
-        model, net = self.model, self.network
-        model[16][:] = [s.temperature for s in net.last_states] if net.last_states else self.T_initial
-        self.load_discrete_state()
-        seg_end = float(seg_end)
-
-        def f(t, y):
-            y = np.ascontiguousarray(y, dtype=float)  # one specialisation: solve_ivp passes views at times
-            out = np.empty_like(y)
-            if not rhs(model, float(t), y, out, seg_end):
-                raise ArithmeticError(f"at t = {t:.9g} s: {self.failure()}")
-            warn_clamped(net, model[9])
-            return out
-        return f
-
     def solve_ivp_system(self, near: float):
         """This network as the system scipy's other methods integrate (:class:`exchange.lowered_system.
         LoweredSystem`), from the network's current discrete state."""
@@ -164,8 +144,7 @@ class CompiledNetwork:
         eq, op, hold = model[20], model[21], model[22]
         model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
         model[25][1] = float(bool(getattr(net, "held", False)))
-        model[7][:, 9] = [UNLOCKED if getattr(c.volume, "piece", None) is None else c.volume.piece
-                          for c in net.cavities]  # a spline piece the network holds (WrappedVolume.lock)
+        model[7][:, 9] = UNLOCKED  # no spline piece held: the segment start locks one (compiled_modes.lock_pieces)
         for j in range(len(net.exchanges)):
             pop_vent = model[12][j, 6] == 1
             eq[j] = net.equalised[j]
@@ -177,7 +156,7 @@ class CompiledNetwork:
                 model[13][j, 9] = math.nan if net.area_at_activation[j] is None else net.area_at_activation[j]
 
     def _mode(self, row) -> tuple:
-        """The network's snapshot (:meth:`Network.snapshot`) from a row of the solver's segment table: code
+        """The network's snapshot (``Network.snapshot()``) from a row of the solver's segment table: code
         (bits: equalised exchanges), then per exchange popped, then per exchange the hold start (NaN: none)."""
         ne, code = len(self.network.exchanges), int(row[4])
         popped = tuple(bool(p) for p in row[5:5 + ne])
@@ -194,14 +173,14 @@ class CompiledNetwork:
 
     def _areas_at_activation(self, popped, t_min) -> tuple:
         """``Network.area_at_activation`` in a segment starting at t_min: a popped vent's area at its pop; the
-        area at the open time of a DELTA LEAKAGE AREA opened by time once a segment starts after it (the Python
-        path sets it at its first right-hand side past the open time); else None."""
+        area at the open time of a DELTA LEAKAGE AREA opened by time once a segment starts at or after it
+        (:func:`exchange.compiled_segment.begin_segment` sets it there); else None."""
         ei, ef, out = self.model[12], self.model[13], []
         for j, ex in enumerate(self.network.exchanges):
             act = ex.activation
             if popped[j]:
                 out.append(float(ef[j, 9]))
-            elif ei[j, 14] and ei[j, 6] == 0 and t_min > act.open_time:
+            elif ei[j, 14] and ei[j, 6] == 0 and t_min >= act.open_time:
                 out.append(float(ef[j, 9]))
             else:
                 out.append(None)

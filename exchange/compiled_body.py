@@ -1,8 +1,8 @@
 """The dynamic body on the compiled path: its equation of motion, its seat contact's force, the hard contact's
 reaction, the seat's switches (kind 13 the seat, kind 14 a kink of the force) and what they do.
 
-The same algorithm as :meth:`cases.model.scene_network.SceneNetwork.rhs` and :class:`cases.model.scene_seat.SeatModes`, on
-the laws of :mod:`exchange.contact_laws` (the kernels the Python path calls). Arrays of the model tuple
+The equation of motion and the seat's modes of :mod:`cases.model.scene_network` (its module docstring), on the laws
+of :mod:`exchange.contact_laws` (the kernels the outputs call too). Arrays of the model tuple
 (:func:`exchange.compiled.lower`):
 
 - ``M[25]`` (3 + 11,) float: 1 if the body has a contact (else 0), 1 while hard contact holds the body on the
@@ -23,18 +23,18 @@ from .compiled_rhs import states
 from .compiled_tables import P, spline_piece_value
 from .contact_laws import HARD, held_side, seat_force
 
-__all__ = ["body_force", "body_rhs", "HAS", "HELD", "SCALE", "LAW", "is_held", "contact_force",
+__all__ = ["gas_force", "body_force", "body_rhs", "HAS", "HELD", "SCALE", "LAW", "is_held", "contact_force",
            "reaction", "seat_switch", "seat_event", "seat_watched", "lifting_side"]
 
 HAS, HELD, SCALE, LAW = 0, 1, 2, 3  # entries of M[25]; the law vector starts at LAW
 
 
 @njit(cache=True, inline="always")
-def body_force(y, ci, tx, ty, ti, st, amb, bd):
-    """Force on the dynamic body along its axis from the gas and the spring [N] (:meth:`cases.model.scene_network.
-    SceneNetwork.applied_force`, same order of operations): (p − p_amb)·dV/ds of the cavity it intrudes into +
-    (p − p_amb)·A of its pressure cavity − preload − k·s. ``bd``: offset, mass, gravity, pushed cavity (−1),
-    pressure cavity (−1), pressure area, stiffness, preload (:func:`exchange.compiled.lower`)."""
+def gas_force(y, ci, tx, ty, ti, st, amb, bd):
+    """Force of the gas on the dynamic body along its axis [N] (:meth:`cases.model.scene_network.SceneNetwork.
+    gas_force`): (p − p_amb)·dV/ds of the cavity it intrudes into (dV/ds < 0 while intruding) + (p − p_amb)·A of
+    its pressure cavity. ``bd``: offset, mass, gravity, pushed cavity (−1), pressure cavity (−1), pressure area,
+    stiffness, preload (:func:`exchange.compiled.lower`)."""
     s = y[int(bd[0])]
     force = 0.0
     pushed, other = int(bd[3]), int(bd[4])
@@ -42,12 +42,19 @@ def body_force(y, ci, tx, ty, ti, st, amb, bd):
         force += (st[pushed, P] - amb[0]) * spline_piece_value(tx, ty, ti, ci[pushed, 3], s, ci[pushed, 9])[1]
     if other >= 0:
         force += (st[other, P] - amb[0]) * bd[5]
-    return force - bd[7] - bd[6] * s
+    return force
+
+
+@njit(cache=True, inline="always")
+def body_force(y, ci, tx, ty, ti, st, amb, bd):
+    """Force on the dynamic body along its axis from the gas and the spring [N]: :func:`gas_force` − preload −
+    k·s."""
+    return gas_force(y, ci, tx, ty, ti, st, amb, bd) - bd[7] - bd[6] * y[int(bd[0])]
 
 
 @njit(cache=True)
 def body_rhs(y, dy, ci, tx, ty, ti, st, amb, bd, contact):
-    """ds/dt = v, dv/dt = g + F/m of the dynamic body (:meth:`cases.model.scene_network.SceneNetwork.rhs`):
+    """ds/dt = v, dv/dt = g + F/m of the dynamic body:
     F = :func:`body_force` + ``contact`` (the seat's force [N], :func:`contact_force`)."""
     k = int(bd[0])
     force = body_force(y, ci, tx, ty, ti, st, amb, bd) + contact
@@ -75,7 +82,7 @@ def contact_force(M, y):
 @njit(cache=True)
 def reaction(M, y):
     """Hard contact held: the seat's reaction F_c [N] (> 0 compressive) balancing the other forces at rest, on the
-    states in ``M[17]`` (:meth:`cases.model.scene_seat.SeatModes.reaction`)."""
+    states in ``M[17]``: −σ_held·(F_gas + F_spring + m·g)."""
     bd = M[24]
     k = int(bd[0])
     net = body_force(y, M[7], M[4], M[5], M[6], M[17], M[14], bd) + bd[1] * bd[2]
@@ -84,7 +91,7 @@ def reaction(M, y):
 
 @njit(cache=True)
 def seat_switch(M, kind, j, y):
-    """Kind 13: F_c/F_scale while held, −g_min/L while free (:meth:`cases.model.scene_seat.SeatModes._seat_switch`);
+    """Kind 13: F_c/F_scale while held (fires at lift-off), −g_min/L while free (fires at impact);
     kind 14: (s − s_j)/L on kink j. L is the seat size [m]; the states in ``M[17]`` are current."""
     sp, nodes = M[25], M[26]
     s, size = y[int(M[24][0])], sp[LAW + 10]
@@ -102,7 +109,8 @@ def seat_switch(M, kind, j, y):
 @njit(cache=True)
 def lifting_side(M, y):
     """σ when the free body rests on its hard seat (v = 0 exactly, a closed node), else 0: its turning-point
-    switch is then watched for the return, direction −σ (:meth:`cases.model.scene_seat.SeatModes.lifting_side`)."""
+    switch is then watched for the return, direction −σ (its acceleration there is zero to round-off, so a probe of
+    v = 0 would take its direction from a rounding error)."""
     sp = M[25]
     k = int(M[24][0])
     if sp[HAS] == 0.0 or int(sp[LAW]) != HARD or sp[HELD] != 0.0 or y[k + 1] != 0.0:
@@ -112,7 +120,7 @@ def lifting_side(M, y):
 
 @njit(cache=True)
 def seat_watched(M, kind):
-    """The switch exists in the current discrete state (:meth:`cases.model.scene_network.SceneNetwork.events`): the
+    """The switch exists in the current discrete state: the
     turning point (kind 10) and the kinks of a hard contact (14) only while the body is free."""
     held = M[25][HELD] != 0.0
     if kind == 10:
@@ -124,7 +132,7 @@ def seat_watched(M, kind):
 
 @njit(cache=True)
 def seat_event(M, kind, t, y, seg_end):
-    """A seat switch fired at t (:meth:`cases.model.scene_seat.SeatModes._seat_event`): lift-off frees the body; an
+    """A seat switch fired at t: lift-off frees the body; an
     impact of the approaching body sets s to the touching position and v to 0 in ``y`` (perfectly plastic
     kinematic contact) and holds it if the reaction is compressive. A kink changes nothing."""
     sp, nodes = M[25], M[26]

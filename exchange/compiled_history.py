@@ -1,23 +1,20 @@
-"""The history of a run on the compiled path, read back from its dense output in one numba call.
+"""The history of a run, read back in one numba call from its states at the output times.
 
-:func:`cases.run.runner.quantities` builds a history row in Python from ``Trajectory.sample`` and ``Network.states``
-(~30 µs a row, ten times the whole solve of a small scene). On the compiled path the trajectory keeps its step
-records and segment table (``Trajectory.compiled_records``), so :func:`history_rows` evaluates the dense output,
-the cavity states and the exchange flows at every output time in one call, with the kernels the right-hand side
-uses (:func:`exchange.compiled_rhs.states`, :func:`~exchange.compiled_rhs.exchange_flow`,
+The states come from the compiled DOP853's step records (:func:`dense_samples`: the segment of each time, then its
+step's 7th-order interpolant) or from solve_ivp's dense output (``Trajectory.sample``); :func:`history_rows` then
+evaluates the cavity states, each exchange's flow and area at every output time with the kernels the right-hand
+side uses (:func:`exchange.compiled_rhs.states`, :func:`~exchange.compiled_rhs.exchange_flow`,
 :func:`~exchange.compiled_rhs.exchange_area`): no physics is written twice.
 
-Each step of the Python builder has its mirror here:
-
-- the segment of time t: ``Trajectory.mode_at`` / ``Trajectory.sample`` (the last segment starting at or before
-  t, right limit at a switch), :func:`segment_of`;
-- the step of that segment and its 7th-order interpolant: ``DenseSteps.__call__`` (the left step at a step end),
-  :func:`dense_state` with :func:`cavity.rk_compiled.dense_eval`;
-- the discrete state: ``Network.restore(mode)``; of a mode the equalised flags (``mode[3]``) and the popped flags
-  (``mode[0]``) act, passed per segment as ``eqs`` and ``ops`` (0 while a pop vent is shut); a DELTA LEAKAGE
-  AREA's area at activation is set once per run (``ef[:, 9]``) and acts only while its exchange is open;
+- the segment of time t: the last segment starting at or before t (right limit at a switch), :func:`segment_of`,
+  as ``Trajectory.mode_at``; the step of that segment: the left step at a step end, :func:`dense_state`;
+- the discrete state of a segment: of its mode the equalised flags (``mode[3]``), the popped flags (``mode[0]``)
+  and the dynamic body's area intervals act, passed per segment as ``eqs``, ``ops`` (0 while a pop vent is
+  shut) and ``ivs``; a DELTA LEAKAGE AREA's area at activation is set once per run (``ef[:, 9]``) and acts only
+  while its exchange is open;
 - the row: the columns of :func:`cases.run.runner.history_columns`, time [s], then per cavity pressure [Pa],
-  temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area [m^2].
+  temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area [m^2],
+  then the unknowns asked for (a real-gas wall's temperatures [K]).
 """
 from __future__ import annotations
 
@@ -27,9 +24,10 @@ from numba import njit
 from cavity.rk_compiled import RECORD, dense_eval
 
 from .compiled_rhs import MASS, P, TT, V, exchange_area, exchange_flow, states
+from .lowered_columns import UNLOCKED
 
-__all__ = ["segment_of", "dense_state", "history_rows", "row_width", "equalised_per_segment", "opened_per_segment",
-           "history"]
+__all__ = ["segment_of", "dense_state", "dense_samples", "history_rows", "row_width", "equalised_per_segment",
+           "opened_per_segment", "samples", "history"]
 
 
 def row_width(n_cavities: int, n_exchanges: int) -> int:
@@ -69,29 +67,40 @@ def dense_state(recs, segs, i, t, y):
 
 
 @njit(cache=True)
-def history_rows(M, recs, segs, eqs, ops, ivs, times):
-    """History rows at ``times`` [s] (sorted or not) from a compiled run's records.
+def dense_samples(recs, segs, times):
+    """(states (len(times), n), segment index per time) of a compiled run's records at ``times`` [s] (sorted or
+    not): the segment of each time (:func:`segment_of`), then its step's dense output (:func:`dense_state`)."""
+    n_y = (recs.shape[1] - RECORD) // 8
+    ys, idx = np.empty((times.size, n_y)), np.empty(times.size, np.int64)
+    for r in range(times.size):
+        idx[r] = segment_of(segs, times[r])
+        dense_state(recs, segs, idx[r], times[r], ys[r])
+    return ys, idx
 
-    ``M``: the model tuple of :class:`exchange.compiled.CompiledNetwork`; ``recs``, ``segs``: the step records
-    and segment table of :func:`exchange.compiled_solver.solve`; ``eqs`` (segments, exchanges) int: 1 where an
-    exchange is equalised (held closed) during the segment; ``ops`` (segments, exchanges) int: 0 where a pop vent
-    has not popped during the segment (:func:`opened_per_segment`); ``ivs`` (segments, exchanges) int: the
-    dynamic body's area interval (:func:`intervals_per_segment`). Returns (ok, rows (len(times), width)); ok is False
-    when a temperature solve failed (the caller then builds the rows in Python). The model's scratch is not
-    touched: the Newton first guesses start at the cavities' initial temperatures.
+
+@njit(cache=True)
+def history_rows(M, ys, idx, eqs, ops, ivs, times, ycols):
+    """History rows at ``times`` [s] from the states ``ys`` (len(times), n) there, each in the discrete state of
+    segment ``idx[r]``.
+
+    ``M``: the model tuple of :class:`exchange.compiled.CompiledNetwork`; ``eqs`` (segments, exchanges) int: 1 where
+    an exchange is equalised (held closed) during the segment; ``ops`` (segments, exchanges) int: 0 where a pop
+    vent has not popped during the segment (:func:`opened_per_segment`); ``ivs`` (segments, exchanges) int: the
+    dynamic body's area interval (:func:`intervals_per_segment`); ``ycols``: unknowns appended as they are (a
+    real-gas wall's temperatures). Returns (ok, rows (len(times), width + len(ycols))); ok is False when a
+    temperature solve failed (that row then holds the first guess). The model's scratch is not touched: the Newton
+    first guesses start at the cavities' initial temperatures.
     """
     rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
     nc, ne = ci.shape[0], ei.shape[0]
-    n_y = (recs.shape[1] - RECORD) // 8
-    y, guess, eq_now, op_now = np.empty(n_y), cf[:, 0].copy(), np.empty(ne, np.int64), np.empty(ne, np.int64)
+    guess, eq_now, op_now = cf[:, 0].copy(), np.empty(ne, np.int64), np.empty(ne, np.int64)
     iv_now = np.empty(ne, np.int64)
     st_, n_, row_ = np.empty_like(st), np.empty_like(n), np.empty_like(row)
-    out = np.empty((times.size, 1 + 4 * nc + 2 * ne))
+    width = 1 + 4 * nc + 2 * ne
+    out = np.empty((times.size, width + ycols.size))
     ok = True
     for r in range(times.size):
-        t = times[r]
-        i = segment_of(segs, t)
-        dense_state(recs, segs, i, t, y)
+        t, y, i = times[r], ys[r], idx[r]
         eq_now[:] = eqs[i]
         op_now[:] = ops[i]
         iv_now[:] = ivs[i]
@@ -104,6 +113,8 @@ def history_rows(M, recs, segs, eqs, ops, ivs, times):
         for j in range(ne):
             out[r, base + 2 * j] = exchange_flow(ei, ef, eq_now, op_now, iv_now, tx, ty, ti, st_, amb, j, t)
             out[r, base + 2 * j + 1] = exchange_area(ei, ef, op_now, iv_now, tx, ty, ti, j, t)
+        for c in range(ycols.size):
+            out[r, width + c] = y[ycols[c]]
     return ok, out
 
 
@@ -143,19 +154,25 @@ def opened_per_segment(modes, pop_vents) -> np.ndarray:
     return ops
 
 
-def history(fast, traj, times, eqs=None) -> np.ndarray | None:
-    """History rows of a compiled trajectory at ``times`` [s] (see :func:`history_rows`), or None when the
-    trajectory did not run on the compiled path or a temperature solve failed (then build them in Python).
-
-    ``fast``: the network's :class:`exchange.compiled.CompiledNetwork`; ``eqs``: :func:`equalised_per_segment`
-    of the trajectory's modes (computed when not given).
-    """
+def samples(traj, times) -> tuple[np.ndarray, np.ndarray]:
+    """(states (len(times), n), segment index per time) of a trajectory at ``times`` [s]: from the compiled
+    DOP853's records in one call, else from solve_ivp's dense output (``Trajectory.sample``)."""
+    times = np.ascontiguousarray(times, dtype=float)
     recs = getattr(traj, "compiled_records", None)
-    if fast is None or traj.path != "compiled" or recs is None:
-        return None
-    if eqs is None:
-        eqs = equalised_per_segment(traj.modes, len(fast.network.exchanges))
+    if recs is not None:
+        return dense_samples(recs[0], recs[1], times)
+    return traj.sample(times), np.asarray(traj.segment_index(times), dtype=np.int64).reshape(-1)
+
+
+def history(fast, traj, times, ycols=()) -> tuple[bool, np.ndarray]:
+    """(ok, history rows) of a trajectory at ``times`` [s] (see :func:`history_rows`; ``ycols``: unknowns
+    appended as columns)."""
+    times = np.ascontiguousarray(times, dtype=float)
+    ne = len(fast.network.exchanges)
+    ys, idx = samples(traj, times)
+    fast.model[7][:, 9] = UNLOCKED  # volume splines on the pieces that hold s
+    eqs = equalised_per_segment(traj.modes, ne)
     ops = opened_per_segment(traj.modes, fast.model[12][:, 6])
-    ivs = intervals_per_segment(traj.modes, len(fast.network.exchanges))
-    ok, out = history_rows(fast.model, recs[0], recs[1], eqs, ops, ivs, np.ascontiguousarray(times, dtype=float))
-    return out if ok else None
+    ivs = intervals_per_segment(traj.modes, ne)
+    return history_rows(fast.model, np.ascontiguousarray(ys), idx, eqs, ops, ivs, times,
+                        np.asarray(ycols, dtype=np.int64))

@@ -71,7 +71,7 @@ def inflow_scratch(ci):
 @njit(cache=True, inline="always")
 def add_wall_heat(ci, inflow, dy):
     """Each real-gas wall's rates into ``dy`` and its heat out of the gas's energy, into the cavity's ledger of
-    heat lost (:meth:`exchange.network.Network.rhs`); False if a wall failed."""
+    heat lost (layout: :mod:`exchange.network`); False if a wall failed."""
     ok = True
     for i in range(ci.shape[0]):
         if ci[i, 1] == 3:

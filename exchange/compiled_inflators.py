@@ -47,7 +47,7 @@ def lower_inflators(net, tables, ns: int, nr: int) -> tuple:
 
 
 def warn_clamped(net, ii: np.ndarray) -> None:
-    """Warn (:func:`cavity.caution.caution`, the Python path's message) for each inflator whose flag ``ii[q, 4]``
+    """Warn (:func:`cavity.caution.caution`, the inflator's own message) for each inflator whose flag ``ii[q, 4]``
     a compiled run raised, and lower the flags."""
     flagged = np.flatnonzero(ii[:, 4])
     if flagged.size:

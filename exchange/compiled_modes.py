@@ -1,8 +1,6 @@
-"""The discrete state of a lowered network on the compiled path: which switches are watched, what a switch
-does, and the state recorded per segment.
-
-Mirrors of :meth:`exchange.network.Network.events` (which switches exist in the current state),
-:meth:`~exchange.network.Network.on_event` and :meth:`~exchange.network.Network.snapshot`. The state lives in the
+"""The discrete state of a lowered network on the engine: which switches are watched, what a switch does, and the
+state recorded per segment (the network's ``snapshot``, :meth:`exchange.compiled.CompiledNetwork.current_mode`).
+The state lives in the
 model tuple of :class:`exchange.compiled.CompiledNetwork`: ``M[20]`` equalised flags, ``M[21]`` 0 while a pop vent
 has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`` and ``M[13]`` are the exchanges'
 ``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`); a pop sets the vent's area at activation ``ef[j, 9]``. Switch
@@ -28,7 +26,7 @@ __all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_int
 
 @njit(cache=True)
 def watched(M, kind, j):
-    """Switch (kind, exchange j) is one of :meth:`Network.events` in the current discrete state: equalise while
+    """Switch (kind, exchange j) is watched in the current discrete state: equalise while
     open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped."""
     eq, op, hold = M[20], M[21], M[22]
     if kind == 11 or kind == 12:  # a law's kinks (exchange.law_kinks): always watched
@@ -53,7 +51,7 @@ def watched(M, kind, j):
 
 @njit(cache=True)
 def on_event(M, kind, j, t, y, seg_end):
-    """:meth:`Network.on_event`: equalise holds the exchange closed, release opens it; a pop crossing starts the
+    """What switch (kind, j) does when it fires at t: equalise holds the exchange closed, release opens it; a pop crossing starts the
     hold (or pops at once without a hold time), a drop re-arms, the hold's end pops; a seat switch may change the
     body's state ``y`` in place (:func:`exchange.compiled_body.seat_event`)."""
     if kind == 15 or kind == 16:
@@ -94,7 +92,7 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
 def body_switch(M, kind, j, y):
     """The dynamic body's switches: (s − s_k)/scale on the crossing above (kind 8) or below (9) its area interval
     of exchange j, on the knot above (15) or below (16) the held piece of cavity j's volume spline, and
-    v/v_scale (10) (:meth:`cases.model.scene_areas.GeometricAreas._area_events`)."""
+    v/v_scale (10): between turning points s is monotone, so each crossing switch changes sign once."""
     if kind == 15 or kind == 16:
         return knot_switch(M, kind, j, y)
     if kind >= 13:
@@ -112,7 +110,9 @@ def body_switch(M, kind, j, y):
 @njit(cache=True)
 def rederive_intervals(M, y):
     """The area interval of each exchange re-derived from the body's displacement when it lies outside by more
-    than the slack (:meth:`cases.model.scene_areas.GeometricAreas._rederive_intervals`)."""
+    than the slack (a crossing passed inside the step of a turning point is caught here, at the restart, so a
+    release is never missed; the slack, :data:`cases.model.scene_areas.REDERIVE_SLACK` of the track's span, is the
+    solver's error at a restart on a crossing event)."""
     bd, ei, tx, ti, iv = M[24], M[12], M[4], M[6], M[23]
     s = y[int(bd[0])]
     for j in range(iv.size):
@@ -126,8 +126,8 @@ def rederive_intervals(M, y):
 
 @njit(cache=True)
 def knot_switch(M, kind, j, y):
-    """(s − x_k)/span of the knot above (kind 15) or below (16) the piece cavity j's volume spline holds
-    (:meth:`cases.model.scene_network.SceneNetwork._knot_events`)."""
+    """(s − x_k)/span of the knot above (kind 15) or below (16) the piece cavity j's volume spline holds (s leaves
+    the piece through them)."""
     tx, ti, ci = M[4], M[6], M[7]
     s, n = ti[ci[j, 3], 0], ti[ci[j, 3], 1]
     p = ci[j, 9]
@@ -139,7 +139,8 @@ def knot_switch(M, kind, j, y):
 def lock_pieces(M, y):
     """At a segment start, hold for each volume spline of the dynamic body's displacement the piece holding s,
     nudged by KNOT_SLACK of its span along the body's velocity
-    (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`)."""
+    (a θ that is a state sees one cubic, extended past its knots, whose switches end the segment: no step
+    straddles the jump of d³V/dθ³ at a knot; piece −1: below the first knot, n − 1: above the last)."""
     tx, ti, ci = M[4], M[6], M[7]
     for i in range(ci.shape[0]):
         if ci[i, 2] != 4:

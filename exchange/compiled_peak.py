@@ -1,6 +1,7 @@
 """The peak pressure of each cavity of a run on the compiled path, found in one numba call.
 
-Mirror of :func:`cases.run.runner.peak_pressure` (the largest pressure at every step end and segment start, refined
+The search of :func:`cases.results.readback.cavity_peaks` on the compiled DOP853's records (the largest pressure at
+every step end and segment start, refined
 between its neighbours by scipy's bounded scalar search, ``minimize_scalar(method="bounded")``, ported line by
 line in :func:`bounded_minimum_of_minus_p`) on the kernels of :mod:`exchange.compiled_history`: a search of ~25–60
 pressure evaluations costs ~1 µs instead of ~0.5 ms through Python. Pressure does not depend on the discrete
@@ -17,6 +18,7 @@ from cavity.rk_compiled import RECORD
 
 from .compiled_history import dense_state, segment_of
 from .compiled_rhs import P, states
+from .lowered_columns import UNLOCKED
 
 __all__ = ["pressure_at", "bounded_minimum_of_minus_p", "peak_pressures", "peaks"]
 
@@ -144,5 +146,6 @@ def peaks(fast, traj, ts) -> list | None:
     recs = getattr(traj, "compiled_records", None)
     if fast is None or traj.path != "compiled" or recs is None:
         return None
+    fast.model[7][:, 9] = UNLOCKED  # volume splines on the pieces that hold s
     ok, out = peak_pressures(fast.model, recs[0], recs[1], np.ascontiguousarray(ts, dtype=float))
     return [(float(p), float(t)) for p, t in out] if ok else None

@@ -3,9 +3,8 @@
 
 The flow laws are not copied here: the orifice, fabric-leakage and Graefe laws of :mod:`exchange.orifice` and
 :mod:`exchange.fabric` are numba functions, inlined into this right-hand side and called as they are by Python.
-The network's bookkeeping (states from (m, U), areas, transfers) follows :meth:`exchange.network.Network.rhs`
-(named in each docstring) so that both paths give the same derivatives to round-off; ``tests/test_compiled.py``
-pairs them. Scalar arithmetic only, SI units throughout. The helpers are inlined (``inline="always"``): numba links
+The network's bookkeeping (states from (m, U), areas, transfers, the ledger) is written here once; the tests pair
+it with a naive assembly from the Python objects (``tests/engine_pairs.py``). Scalar arithmetic only, SI units throughout. The helpers are inlined (``inline="always"``): numba links
 separately compiled functions without inlining them, and a call passing a few arrays costs ~80 ns, as much as the
 law itself (measured: the whole right-hand side 0.54 → 0.37 µs).
 
@@ -52,16 +51,17 @@ from numba import njit
 from blockage.moving_area import moving_leak_area
 from cavity.gas_rows import mixture_row, range_of, row_cp, row_enthalpy, temperature
 
+from .activation import activated_area
 from .compiled_hosted import add_wall_heat, choke_ratio_of, hosted_flow, hosted_state, inflow_scratch
 from .compiled_sources import inflator_flow, law_flow, liquid_state, prescribed_flow
-from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, spline_value, step_value,
+from .compiled_tables import (DV, FR, GAM, H, MASS, RG, RHO, TT, R_U, P, V, side, step_value,
                               table_value, eos_volume)
 from .equalised import EQUALISED_BELOW, RELEASED_ABOVE
 from .orifice import LINEAR_BELOW
 
 @njit(cache=True, inline="always")
 def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row):
-    """Fill ``st`` with every cavity's state at (t, y) (:meth:`cavity.cavity.CavityState.of` + ``gas_point``).
+    """Fill ``st`` with every cavity's state at (t, y) and its flow-law view (ρ, R, γ, h, mass fractions).
 
     Returns False when a temperature solve failed. ``n`` (ns,) and ``row`` (7,) are scratch.
     """
@@ -112,29 +112,23 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
             st[i, H] = row_enthalpy(row, T) / m
             for s in range(ns):
                 st[i, FR + s] /= m
-        else:  # gas_point of an empty cavity
+        else:  # an empty cavity
             st[i, RHO], st[i, RG], st[i, GAM], st[i, H] = 0.0, 1.0, 1.4, 0.0
     return ok
 
 
 @njit(cache=True, inline="always")
 def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
-    """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area`); ``op[j]`` is 0 while a
-    pop vent has not popped; ``iv[j]`` the interval of the dynamic body's displacement that holds the area of an
-    area kind 2 (``ei[j, 10]``); with DELTA LEAKAGE AREA (``ei[j, 14]``) the base area less its value at
-    activation ``ef[j, 9]``, clipped at zero; NaN there (an area that follows the dynamic body, opened by time) is
-    replaced by its area at the open time on the first call past it, as :meth:`Network.exchange_area` does."""
-    if ei[j, 4] == 1 and not (ef[j, 2] <= t < ef[j, 3]):
-        return 0.0
-    if op[j] == 0:
-        return 0.0
+    """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area` of its base area):
+    ``ei[j, 4]`` 1 with a time window ``ef[j, 2:4]``; ``op[j]`` 0 while a pop vent has not popped; ``ei[j, 3]``
+    its amplitude table (−1: none); ``iv[j]`` the interval of the dynamic body's displacement that holds the area
+    of an area kind 2 (``ei[j, 10]``); with DELTA LEAKAGE AREA (``ei[j, 14]``) the area at activation ``ef[j, 9]``
+    (of one opened by time that follows the dynamic body, set at the first segment start past its open time:
+    :func:`exchange.compiled_segment.begin_segment`)."""
+    window = ei[j, 4] == 1
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
-    base = base_area(ei, ef, iv, tx, ty, ti, j, t)
-    if ei[j, 14] == 1:
-        if ef[j, 9] != ef[j, 9]:  # NaN: opened by time, following the dynamic body: its area at the open time,
-            ef[j, 9] = base_area(ei, ef, iv, tx, ty, ti, j, ef[j, 2])  # taken at the first call past it
-        base = max(base - ef[j, 9], 0.0)
-    return a * base
+    return activated_area(base_area(ei, ef, iv, tx, ty, ti, j, t), t, ef[j, 2] if window else -np.inf,
+                          ef[j, 3] if window else np.inf, op[j] == 0, a, ef[j, 9] if ei[j, 14] == 1 else 0.0)
 
 
 @njit(cache=True, inline="always")
@@ -192,9 +186,10 @@ def _transfer(ci, dy, i, mdot, edot, st, amb, src):
 @njit(cache=True)
 def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb,
                 ledger, T_guess, st, n, row, eq, op, iv):
-    """d(unknowns)/dt into dy (:meth:`exchange.network.Network.rhs`); False if a temperature solve failed.
+    """d(unknowns)/dt into dy (layout: :mod:`exchange.network`); False if a temperature solve failed.
 
-    ``seg_end``: inputs are read at its left limit when t reaches it (:meth:`Network.input_time`); ``ledger``:
+    ``seg_end``: inputs are read at its left limit when t reaches it (tables are right-continuous at their
+    breakpoints; a step ending on one must see the slope of the piece it integrated over); ``ledger``:
     offset of the exchanges' ledger entries (each cavity's are ``ci[i, 4]``).
     """
     if t >= seg_end:
@@ -254,10 +249,11 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
 
 @njit(cache=True)
 def switch_value(kind, j, ci, ei, ef, st, amb):
-    """Switch function of exchange j on the states in ``st`` (:meth:`Network._choke_switch`, kind 0,
-    :meth:`Network._dp_switch`, kind 1, the equalise and release switches, kinds 2 and 3,
-    :meth:`Network._pop_switch`, kinds 4 (pop) and 5 (pop-drop), the orifice join, kind 7) [-]. The pop-hold
-    switch (kind 6) depends on time only: :func:`exchange.compiled_solver.switches`."""
+    """Switch function of exchange j on the states in ``st`` [-]: kind 0 choking (p_low − r*·p_high)/p_high, where
+    the orifice law's second derivative jumps; kind 1 the one-way reversal Δp/p_max; kinds 2 and 3 the equalise and
+    release levels of |Δp|/p_max (:mod:`exchange.equalised`); kinds 4 (pop) and 5 (pop-drop) (Δp − p_pop)/max(p_pop,
+    p_b); kind 7 the orifice law's C¹ join at |Δp|/p = LINEAR_BELOW. The pop-hold switch (kind 6) depends on time
+    only: :func:`exchange.compiled_kernels.switches`."""
     a, b = ei[j, 0], ei[j, 1]
     pa, pb = st[a, P], side(st, amb, b, P)
     if kind == 1:

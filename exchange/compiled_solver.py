@@ -19,47 +19,15 @@ from numba import njit, objmode
 from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_FACTOR, N_STAGES, RECORD, SAFETY,
                                 dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
-from .compiled_modes import body_switch, lock_pieces, on_event, record_segment, rederive_intervals, watched
-from .compiled_body import body_rhs, contact_force, is_held, lifting_side
-from .compiled_rhs import network_rhs, states, switch_value
-from .compiled_sources import kink_value
+from .compiled_kernels import rhs, switches
+from .compiled_modes import on_event, record_segment
+from .compiled_segment import begin_segment, directions
 
 OK, STEP_BUDGET, STEP_TOO_SMALL, RHS_FAILED, NOT_FINITE, STALLED, WALL_BUDGET = 0, 1, 2, 3, 4, 5, 6
 WALL_CHECK_EVERY = 1024  # steps between two looks at the clock (an object-mode call of ~1 µs)
 MAX_EVENTS_AT_ONE_TIME = 20  # cavity.integration.MAX_EVENTS_AT_ONE_TIME
 NO_BUDGET = 1 << 62  # the tail to an event is not budgeted (as in cavity.integration)
 EPS4 = 4.0 * np.finfo(np.float64).eps
-
-
-@njit(cache=True)
-def rhs(M, t, y, out, seg_end):
-    """Network right-hand side into out; False when a temperature solve failed."""
-    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
-    ok = network_rhs(t, y, out, seg_end, rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef,
-                     amb, ledger, T_guess, st, n, row, eq, M[21], M[23])
-    if M[24][0] >= 0.0 and not is_held(M):
-        body_rhs(y, out, ci, tx, ty, ti, st, amb, M[24], contact_force(M, y))
-    return ok
-
-
-@njit(cache=True)
-def switches(M, kinds, js, t, y, seg_end, vals):
-    """Values of switch functions (kinds, js) at (t, y), inputs read as the right-hand side reads them; the
-    pop-hold switch (kind 6) is (t − due)/hold at the raw t, due = hold start + hold time (:meth:`Network.events`)."""
-    rows, breaks, linear, Mm, tx, ty, ti, ci, cf, ii, if_, irows, ei, ef, amb, ledger, T_guess, st, n, row, eq = M[:21]
-    t_in = np.nextafter(seg_end, -np.inf) if t >= seg_end else t
-    states(rows, breaks, linear, Mm, tx, ty, ti, ci, cf, t_in, y, T_guess, st, n, row)
-    for q in range(kinds.size):
-        j = js[q]
-        if kinds[q] == 11 or kinds[q] == 12:
-            vals[q] = kink_value(kinds[q], j, ei, tx, ti, st, amb)
-        elif kinds[q] >= 8:  # the dynamic body and its seat
-            vals[q] = body_switch(M, kinds[q], j, y)
-        elif kinds[q] == 6:  # 1 (never watched) when not holding
-            h = ef[j, 5]
-            vals[q] = (t - (M[22][j] + h)) / h if h > 0.0 and not math.isnan(M[22][j]) else 1.0
-        else:
-            vals[q] = switch_value(kinds[q], j, ci, ei, ef, st, amb)
 
 
 @njit(cache=True)
@@ -282,61 +250,6 @@ def piece(M, wk, wj, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_ste
         f[:] = K[N_STAGES]
         if t >= t_bound:
             return OK, t, y, -1, t, y_old, buf
-
-
-@njit(cache=True)
-def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
-    """(watched switch indices, their directions) at a segment start (``cavity.integration._directions``)."""
-    nsw, n = kinds.size, y.size
-    vals, pvals = np.empty(nsw), np.empty(nsw)
-    wq, wd = np.empty(nsw, np.int64), np.empty(nsw)
-    switches(M, kinds, js, t, y, seg_end, vals)
-    probed, nw = False, 0
-    for q in range(nsw):
-        if not watched(M, kinds[q], js[q]):
-            continue  # the switch of another discrete state
-        if kinds[q] == 8 or kinds[q] == 9 or kinds[q] == 15 or kinds[q] == 16:  # it leaves through that end only
-            d = 1.0 if kinds[q] == 8 or kinds[q] == 15 else -1.0
-        elif kinds[q] == 10 and lifting_side(M, y) != 0.0:  # freed at rest on its seat: it can only return
-            d = -lifting_side(M, y)
-        elif q == last_q and t == last_t:
-            d = -last_dir
-        elif abs(vals[q]) > near:
-            d = 1.0 if vals[q] < 0 else -1.0
-        else:
-            if not probed:
-                dt = 1e-9 * max(abs(t), 1e-6)
-                fp = np.empty(n)
-                rhs(M, t, y, fp, seg_end)
-                switches(M, kinds, js, t + dt, y + dt * fp, seg_end, pvals)
-                probed = True
-            trend = pvals[q] - vals[q]
-            d = -1.0 if trend > 0 else (1.0 if trend < 0 else 0.0)
-        if d != 0.0:
-            wq[nw], wd[nw] = q, d
-            nw += 1
-    return wq[:nw], wd[:nw]
-
-
-@njit(cache=True)
-def begin_segment(M, kinds, js, t, y, seg_end):
-    """Equalise the exchanges whose sides agree at the segment start (:meth:`Network.begin_segment`); returns
-    the mode bitmask (bit j: exchange j equalised)."""
-    eq, ei = M[20], M[12]
-    one_k, one_j, val = np.empty(1, np.int64), np.empty(1, np.int64), np.empty(1)
-    if M[24][0] >= 0.0:
-        rederive_intervals(M, y)
-        lock_pieces(M, y)
-    mode = 0
-    for j in range(eq.size):
-        if ei[j, 5] == 1 and eq[j] == 0:
-            one_k[0], one_j[0] = 2, j
-            switches(M, one_k, one_j, t, y, seg_end, val)
-            if val[0] < 0.0:
-                eq[j] = 1
-        if eq[j] == 1:
-            mode += 1 << j
-    return mode
 
 
 @njit(cache=True)

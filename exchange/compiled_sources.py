@@ -2,7 +2,7 @@
 its discharge coefficient), prescribed fluxes, inflator mass flows, the state of a hydraulic cavity, and the
 switches at a table law's kinks (array layout: :mod:`exchange.compiled_rhs`).
 
-The laws themselves are the numba kernels of their own modules, which the Python path calls too: nothing here
+The laws themselves are the numba kernels of their own modules, which Python calls too: nothing here
 restates a law.
 """
 from __future__ import annotations
@@ -28,8 +28,8 @@ from .orifice import orifice_mass_flow
 
 @njit(cache=True, inline="always")
 def liquid_state(ci, cf, tx, ty, ti, i, t, y, st):
-    """Row i of ``st`` for a hydraulic cavity (:meth:`cavity.hydraulic.HydraulicCavity.state` and its gas point:
-    R and γ NaN, h 0, one "species"): mass, volume, T(t) from table ``ci[i, 8]``, ρ_ref(T) = ρ_0·exp(−α(T − T_0)),
+    """Row i of ``st`` for a hydraulic cavity (:class:`cavity.hydraulic.HydraulicCavity`; its flow-law view: R and
+    γ NaN, h 0, one "species"): mass, volume, T(t) from table ``ci[i, 8]``, ρ_ref(T) = ρ_0·exp(−α(T − T_0)),
     p from :func:`cavity.hydraulic.hydraulic_pressure` (−inf when empty)."""
     k = ci[i, 0]
     m = y[k] if y[k] > 0.0 else 0.0
@@ -134,7 +134,7 @@ def inflator_flow(ii, if_, irows, breaks, tx, ty, ti, q, t):
 def kink_value(kind, code, ei, tx, ti, st, amb):
     """Switch at a law's kink (:func:`exchange.law_kinks.kink_switches`): row r of exchange j's Cd table of
     pressure (kind 11), (max(p_a, p_b) − x_r)/x_r, or of its leakage table (kind 12), (|p_a − p_b| − Δp_r)/Δp_r;
-    ``code`` is j + ne·(r + 1) (:func:`exchange.compiled._switches`)."""
+    ``code`` is j + ne·(r + 1) (:func:`exchange.lowered_switches.switch_table`)."""
     ne = ei.shape[0]
     j, r = code % ne, code // ne - 1
     pa, pb = st[ei[j, 0], P], side(st, amb, ei[j, 1], P)

@@ -1,6 +1,6 @@
 """The lowest kernels of the compiled path: tables (piecewise linear, steps, cubic splines), volumes and the
 columns of the state scratch (the gas's rows: :mod:`cavity.gas_rows`); shared by :mod:`exchange.compiled_rhs`
-and :mod:`exchange.compiled_sources` (array layout: :mod:`exchange.compiled_rhs`). Each mirrors the Python method named in its docstring.
+and :mod:`exchange.compiled_sources` (array layout: :mod:`exchange.compiled_rhs`).
 """
 from __future__ import annotations
 
@@ -75,7 +75,7 @@ def spline_piece_value(tx, ty, ti, k, x, p):
     piece's knots by one piece width (farther, as :func:`spline_value`: the extended cubic may leave the data
     there) (−1: below the first knot, the value there and slope 0; n − 1: above the last; UNLOCKED: on the
     piece holding x, :func:`spline_value`). The switches at the piece's knots end the segment, so a step never
-    straddles a knot's jump in the third derivative (:meth:`cases.model.wrapped_volume.WrappedVolume.lock`)."""
+    straddles a knot's jump in the third derivative (:func:`exchange.compiled_modes.lock_pieces`)."""
     if p == UNLOCKED:
         return spline_value(tx, ty, ti, k, x)
     s, n, c = ti[k, 0], ti[k, 1], ti[k + 1, 0]

@@ -6,8 +6,7 @@ wall's heat flows (film properties from CoolProp) and the real-gas nozzle, or a 
 Those parts stay the objects the scene built; the compiled kernels call them in numba's object mode
 (:mod:`exchange.compiled_hosted`, ~1.7 µs a call measured here, less than the CoolProp update it wraps) and
 everything else (the other cavities, exchanges, inflators, activation, ledger, switches, events, the integrator)
-runs compiled. Nothing is restated: each function below calls the method the Python right-hand side
-(:meth:`exchange.network.Network.rhs`) calls.
+runs compiled. Nothing is restated: each function below calls the object's own method.
 
 Each lowered network with hosted parts is registered here once (:func:`register`) under an integer id, which
 the arrays carry (``ci[i, 8]`` of a hosted cavity, ``ei[j, 11]`` of a hosted law); the entry holds the network
@@ -46,7 +45,8 @@ class Host:
         return self._net()
 
     def point(self, u: int, st) -> GasPoint:
-        """The gas point of side u (−1: ambient) as :func:`exchange.network_switches.gas_point` gives it."""
+        """The flow-law view (:class:`exchange.vent.GasPoint`) of side u (−1: ambient): a real-gas cavity's from its
+        last state, an ideal gas's from its row of the state scratch."""
         net = self.network
         if u < 0:
             return net._ambient_point
@@ -97,7 +97,7 @@ def cavity_state(h: int, i: int, t: float, y, st, T_guess: float) -> float:
 
 def law_flow(h: int, j: int, u: int, p_down: float, area: float, t: float, st) -> float:
     """Mass flow [kg/s] of exchange j's hosted law from side u into p_down [Pa] through ``area`` [m^2] at t
-    (``law.mass_flow``, as :meth:`exchange.network.Network.exchange_flows` calls it); NaN if it failed."""
+    (``law.mass_flow(up, p_down, area, t)``); NaN if it failed."""
     host = HOSTS[h]
     try:
         return float(host.network.exchanges[j].law.mass_flow(host.point(u, st), p_down, area, t))

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .bulk_viscosity import bulk_viscosity_mass_flow, linear_resistance_mass_flow
-from .discharge import PRESSURE, DischargeTable, discharge_coefficient
+from .discharge import PRESSURE, DischargeTable
 from .fabric import fabric_leakage_mass_flow, graefe_mass_flow
 from .flux import mass_flux_mass_flow, volume_flux_mass_flow
 from .leakage_table import LeakageTable, leakage_table_mass_flow
@@ -41,7 +41,7 @@ class OrificeLaw:
     discharge_coefficient: object = 1.0
     pneumatic = True
     prescribed = False
-    orifice_join = True  # the law changes form at Δp/p = LINEAR_BELOW: a switch there (Network.events)
+    orifice_join = True  # the law changes form at Δp/p = LINEAR_BELOW: a switch there (exchange.lowered_switches)
 
     def mass_flow(self, up, p_down, area, t):
         return orifice_mass_flow(up.p, up.T, p_down, up.R, up.gamma, area, _cd(self.discharge_coefficient, up, t))

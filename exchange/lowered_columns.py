@@ -16,7 +16,7 @@ __all__ = ["Tables", "spline_entry", "law_parameters", "law_tables", "area_at_ac
 UNLOCKED = -2
 #: At a segment start the piece of a volume spline of the dynamic body's displacement is the one holding s nudged
 #: by this fraction of the spline's span along the body's motion (after a knot switch s lies on the knot, to
-#: round-off; :meth:`cases.model.wrapped_volume.WrappedVolume.lock`).
+#: round-off; :func:`exchange.compiled_modes.lock_pieces`).
 KNOT_SLACK = 1e-9
 
 
@@ -55,7 +55,7 @@ def law_tables(law, tables) -> tuple:
 
 def area_at_activation(net, j) -> float:
     """``ef[j, 9]``: the base area [m^2] a DELTA LEAKAGE AREA subtracts, known in advance for an exchange opened by
-    time (the area at its open time, :meth:`Network.exchange_area`); a pop vent's is set when it pops
+    time (the area at its open time); a pop vent's is set when it pops
     (:func:`exchange.compiled_modes.on_event`)."""
     act = net.exchanges[j].activation
     if act is None or not act.delta_area or act.pop_pressure is not None:

@@ -14,8 +14,8 @@ def switch_table(net, geometry):
     4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area
     interval, 10 its turning point, 15/16 the knot above/below the piece of the volume spline it holds, 13 its seat,
     14 a kink of the seat's force), their exchanges (a law's kink: j + ne·(row + 1); a knot: the pushed cavity;
-    the seat's kink: its index) and labels, in the order of :meth:`Network.events` (each watched
-    only in its discrete state)."""
+    the seat's kink: its index) and labels (each watched only in its discrete state:
+    :func:`exchange.compiled_modes.watched`)."""
     kinds, js, labels = [], [], []
 
     def add(kind, j, what):

@@ -2,9 +2,9 @@
 
 LSODA, Radau, BDF, RK45 and RK23 run through ``solve_ivp`` segment by segment; what they integrate and watch is the
 compiled engine's, the same kernels the compiled DOP853 (:func:`exchange.compiled_solver.solve`) calls: the
-right-hand side (:func:`~exchange.compiled_solver.rhs`), the switch functions (:func:`~exchange.compiled_solver.
-switches`), which of them are watched and in which direction (:func:`~exchange.compiled_solver.directions`), the
-segment start (:func:`~exchange.compiled_solver.begin_segment`: equalised exchanges, the dynamic body's area
+right-hand side (:func:`exchange.compiled_kernels.rhs`), the switch functions (:func:`exchange.compiled_kernels.
+switches`), which of them are watched and in which direction (:func:`exchange.compiled_segment.directions`), the
+segment start (:func:`exchange.compiled_segment.begin_segment`: equalised exchanges, the dynamic body's area
 intervals and spline pieces) and what a switch does (:func:`exchange.compiled_modes.on_event`). The discrete state
 lives in the model arrays, as on the compiled DOP853; the network's snapshot of it per segment comes from
 :meth:`exchange.compiled.CompiledNetwork.current_mode`.

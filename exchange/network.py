@@ -1,4 +1,6 @@
-"""A network of cavities joined by exchanges: the ODE right-hand side of a whole scene's gas.
+"""A network of cavities joined by exchanges: the unknowns of a whole scene's gas, their layout and the discrete
+state, which the compiled engine lowers and integrates (:mod:`exchange.compiled`: its right-hand side, switches and
+events; :mod:`exchange.point_values`: its values at an instant).
 
 Unknown vector layout::
 
@@ -12,25 +14,25 @@ step is linear in the rates, initial + inflow − outflow − final vanishes to 
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from cavity.cavity import CavityState
-from .activation import activated_area
-from .equalised import EQUALISED_BELOW
 from .network_lowering import NetworkLowering
-from .network_rates import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, NetworkRates
-from .network_switches import NetworkSwitches
 from .vent import GasPoint
 
 __all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
 
+LEDGER_PER_EXCHANGE = 2  # mass, energy
+LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
+
 
 @dataclass
-class Network(NetworkRates, NetworkLowering, NetworkSwitches):
-    """Cavities, exchanges and the environment of one scene.
+class Network(NetworkLowering):
+    """Cavities, exchanges and the environment of one scene, with its discrete state: per exchange whether a pop
+    vent has popped, when its hold started, its area when it opened (DELTA LEAKAGE AREA) and whether a two-way
+    exchange is held closed (equalised). The compiled engine keeps that state in its arrays during a run and the
+    network receives it per segment (``snapshot``/``restore``).
 
     Attributes
     ----------
@@ -46,12 +48,8 @@ class Network(NetworkRates, NetworkLowering, NetworkSwitches):
     ambient: object
     offsets: list = field(init=False)
     ledger_offset: int = field(init=False)
-    _T_guess: list = field(init=False)
     _ambient_point: GasPoint = field(init=False)
-    _segment_end: float = field(init=False, default=math.inf)
     _ledger: list = field(init=False)
-    last_states: list = field(init=False, default=None)  # the cavity states of the latest rhs call
-    _inflow_fractions: list = field(init=False)
     popped: list = field(init=False)  # per exchange: the pop condition has been met (it stays open)
     holding_since: list = field(init=False)  # per exchange: when Δp last rose above the pop pressure, or None
     area_at_activation: list = field(init=False)
@@ -65,24 +63,16 @@ class Network(NetworkRates, NetworkLowering, NetworkSwitches):
         self._ambient_point = self.ambient.point()
         self._ledger = [self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges) + LEDGER_PER_CAVITY * i
                         for i in range(len(self.cavities))]
-        self._inflow_fractions = [[np.asarray(inf.mass_fractions, dtype=float) for inf in c.inflators]
-                                  for c in self.cavities]
-        self._layout = [(cav, k, getattr(cav, "kind", "gas"), cav.n_unknowns)
-                        for cav, k in zip(self.cavities, self.offsets)]
-        self._walls = [i for i, c in enumerate(self.cavities) if getattr(c, "wall", None) is not None]
-        self._keep_states = any(getattr(c, "kind", "gas") == "realgas" for c in self.cavities)
-        self._kept = (None, None)
+        real = any(getattr(c, "kind", "gas") == "realgas" for c in self.cavities)
         #: the unknowns the right-hand side depends on (cavity states; not the ledger), for a Jacobian by
-        #: differences that skips the rest (cavity.integration); real-gas networks only, ideal ones unchanged
+        #: differences that skips the rest (cavity.jacobian); real-gas networks only, ideal ones unchanged
         self.coupled_unknowns = [k + i for cav, k in zip(self.cavities, self.offsets)
                                  for i in range(getattr(cav, "n_coupled", cav.n_unknowns))] \
-            if self._keep_states and type(self) is Network else None
+            if real and type(self) is Network else None
         self.reset()
 
     def reset(self) -> None:
         """Back to the discrete state of t = 0 (vents armed, nothing popped)."""
-        self._T_guess = [c.initial_temperature for c in self.cavities]
-        self._segment_end = math.inf
         self.popped = [False] * len(self.exchanges)
         self.holding_since = [None] * len(self.exchanges)
         self.area_at_activation = [None] * len(self.exchanges)  # set when each exchange opens
@@ -108,64 +98,33 @@ class Network(NetworkRates, NetworkLowering, NetworkSwitches):
         return tuple(pts)
 
     def states(self, t: float, y) -> list:
-        """The gas state of every cavity at (t, y). With a real-gas cavity the last (t, y) and its states are
-        kept: the switch functions, evaluated one after the other at each step's end, solve the equation of state
-        once."""
-        if self._keep_states:
-            key = (t, np.asarray(y, dtype=float).tobytes())
-            if key == self._kept[0]:
-                return self._kept[1]
-            out = self._states(t, y)
-            self._kept = (key, out)
-            return out
-        return self._states(t, y)
+        """The :class:`exchange.point_values.GasState` of every cavity at (t, y), from the compiled engine."""
+        from .point_values import cavity_states
 
-    def _states(self, t: float, y) -> list:
-        out = []
-        for i, (cav, k, kind, n) in enumerate(self._layout):
-            if kind == "hydraulic":
-                out.append(cav.state(t, y[k:k + 1]))
-                continue
-            s = (cav.state(t, y[k:k + n], self._T_guess[i]) if kind == "realgas" else
-                 CavityState.of(cav, self.gas, t, y[k:k + n], self._T_guess[i]))
-            self._T_guess[i] = s.temperature
-            out.append(s)
-        return out
+        return cavity_states(self.engine(), t, y)
 
     def base_area(self, index: int, t: float) -> float:
-        """Leakage area of exchange ``index`` before activation rules [m^2]."""
+        """Leakage area of exchange ``index`` before activation rules [m^2] (lowered as it is: a constant here)."""
         return self.exchanges[index].area
 
-    def exchange_area(self, index: int, t: float) -> float:
-        """Flow area of exchange ``index`` at t [m^2]: the leakage area after activation (window, pop, amplitude)."""
-        ex, act = self.exchanges[index], self.exchanges[index].activation
-        if act is not None and act.delta_area and act.pop_pressure is None and t >= act.open_time \
-                and self.area_at_activation[index] is None:  # opened by time: the area at the opening time
-            self.area_at_activation[index] = self.base_area(index, act.open_time)
-        return activated_area(self.base_area(index, t), t, ex.activation, self.popped[index],
-                              self.area_at_activation[index] or 0.0)
+    def can_equalise(self, index: int) -> bool:
+        """Exchange ``index`` has an equalised mode: a pneumatic law between two gas cavities, or two-way to
+        ambient (:data:`exchange.equalised.EQUALISED_BELOW`)."""
+        ex = self.exchanges[index]
+        if ex.law.prescribed or not ex.law.pneumatic or not (ex.two_way or ex.downstream is not None):
+            return False
+        return all(getattr(self.cavities[i], "kind", "gas") == "gas" for i in (ex.upstream, ex.downstream)
+                   if i is not None)
 
-    def begin_segment(self, t0: float, t1: float, y0=None) -> None:
-        """The integrator is about to integrate over [t0, t1] from y0; no breakpoint lies inside.
+    def snapshot(self) -> tuple:
+        """The discrete state (for reading results back on a segment)."""
+        return (tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation),
+                tuple(self.equalised))
 
-        A two-way pneumatic exchange whose sides agree to :data:`EQUALISED_BELOW` at t0 starts the segment
-        equalised (held closed); its release switch watches for the network driving them apart.
-        """
-        self._segment_end = t1
-        if y0 is None:
-            return
-        for j in range(len(self.exchanges)):
-            if not self.equalised[j] and self.can_equalise(j) and self._dp_relative(t0, y0, j) < EQUALISED_BELOW:
-                self.equalised[j] = True
-
-    def input_time(self, t: float) -> float:
-        """The time at which to read tabulated inputs: at the end of a segment, its left limit.
-
-        Tables are right-continuous at their breakpoints; a step ending on a breakpoint must see the slope of the
-        piece it integrated over, not the next one.
-        """
-        end = self._segment_end
-        return math.nextafter(end, -math.inf) if t >= end else t
+    def restore(self, mode) -> None:
+        if mode is not None:
+            self.popped, self.holding_since, self.area_at_activation = (list(m) for m in mode[:3])
+            self.equalised = list(mode[3]) if len(mode) > 3 else [False] * len(self.exchanges)
 
     def is_plain(self) -> bool:
         """True for a plain :class:`Network` (a subclass lowers itself only through ``lowered_geometry``)."""

@@ -1,17 +1,17 @@
-"""How a cavity network reaches the compiled path: lowered once and kept, its compiled right-hand side for
-solve_ivp's other methods, and why it does not lower (a mixin of :class:`exchange.network.Network`)."""
+"""How a cavity network reaches the compiled engine: lowered once and kept, or why it does not lower (a mixin of
+:class:`exchange.network.Network`)."""
 from __future__ import annotations
 
 __all__ = ["NetworkLowering"]
 
 
 class NetworkLowering:
-    """Hooks used by :func:`cavity.integration.integrate` (``compiled_solver``, ``segment_rhs``,
-    ``compiled_unsupported``); needs ``gas``, ``cavities``, ``exchanges``, ``ambient`` and ``rhs``."""
+    """Hooks used by :func:`cavity.integration.integrate` (``compiled_solver``, ``compiled_unsupported``) and by
+    the results (``engine``); needs ``gas``, ``cavities``, ``exchanges`` and ``ambient``."""
 
     def compiled_solver(self):
-        """This network lowered to arrays for the compiled DOP853 path (:mod:`exchange.compiled`), or None when a
-        part of it is not supported there (then the integrator runs the Python path). Built once and kept."""
+        """This network lowered to arrays for the compiled engine (:mod:`exchange.compiled`), or None when a part
+        of it is not supported there (:meth:`compiled_unsupported` says which). Built once and kept."""
         key = (type(self), self.gas, self.cavities, self.exchanges, self.ambient)
         cached = self.__dict__.get("_compiled")
         if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])) \
@@ -22,11 +22,12 @@ class NetworkLowering:
             self.__dict__["_compiled"] = cached
         return cached[-1]
 
-    def segment_rhs(self, t1: float):
-        """The right-hand side solve_ivp integrates over a segment ending at t1 (after :meth:`begin_segment`): the
-        compiled one when the network lowers (:meth:`compiled_solver`), else :meth:`rhs`."""
+    def engine(self):
+        """:meth:`compiled_solver`, or a ValueError saying why this network does not lower."""
         fast = self.compiled_solver()
-        return self.rhs if fast is None else fast.rhs_function(t1)
+        if fast is None:
+            raise ValueError(f"the engine cannot run {type(self).__name__}: {self.compiled_unsupported()}")
+        return fast
 
     def compiled_unsupported(self) -> str | None:
         """Why :meth:`compiled_solver` is None (None: it is supported)."""

@@ -82,15 +82,3 @@ class Exchange:
     area: float
     two_way: bool = False
     activation: Activation | None = None
-
-    def mass_flow(self, a: GasPoint, b: GasPoint, area: float, t: float) -> float:
-        """Signed mass flow from side a to side b [kg/s]."""
-        if area <= 0.0:
-            return 0.0
-        if self.law.prescribed:
-            return self.law.mass_flow(a, b.p, area, t)
-        if a.p >= b.p:
-            return self.law.mass_flow(a, b.p, area, t)
-        if self.downstream is None and not self.two_way:
-            return 0.0
-        return -self.law.mass_flow(b, a.p, area, t)

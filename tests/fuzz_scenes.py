@@ -9,7 +9,6 @@ another seed and count::
 """
 from __future__ import annotations
 
-import copy
 import io
 import json
 import math

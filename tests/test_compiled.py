@@ -1,14 +1,12 @@
-"""The compiled DOP853 path (exchange.compiled*, cavity.rk_compiled) against the Python path it replaces.
+"""The one engine: its compiled DOP853 against scipy's DOP853 stepping the same lowered network, its right-hand
+side against a reference assembled from the Python objects, and its history read back in one compiled call
+against rows built point by point (tests.engine_pairs).
 
-Naive-vs-fast pairs: the jitted orifice law against exchange.orifice, the jitted right-hand side against
-Network.rhs, and whole runs of every library case and hard scene both paths can run (same steps, same events,
-the same pressures to round-off), and the history read back in one compiled call (exchange.compiled_history,
-exchange.compiled_peak) against the row-by-row Python history, column by column (library cases, a two-way vent
-that equalises or is released, a time window with an amplitude table between two cavities). Plus: which path
-ran, the automatic fallback, and the step budget.
+Whole runs of every library case (same steps, same events, the same pressures to round-off), the equalised mode
+of a two-way vent, pop vents, fabric, Graefe and linear-resistance laws; which integrator ran, laws of one's own
+(hosted), a network that does not lower, and the step budget.
 """
 import copy
-import math
 from dataclasses import replace
 from pathlib import Path
 
@@ -17,11 +15,13 @@ import pytest
 
 from cases.model.build import build_model
 from cases.run.library import CASES, HERE
-from cases.run.runner import cavity_summary, compiled_readback, history_columns, history_rows, run
+from cases.results.readback import history_columns, history_rows
+from cases.run.runner import run
 from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import SolverError, integrate
 from exchange import orifice
-from exchange.compiled_solver import rhs as compiled_rhs
+from tests.engine_pairs import (assert_rhs_matches_reference, assert_same_history, assert_same_on_both_integrators,
+                                both_integrators, compiled_dop853, pressures)
 from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
 
@@ -38,26 +38,8 @@ def model_of(name):
     return build_model(load_scene(HERE / CASES[name]))
 
 
-def both_paths(model):
-    """(compiled trajectory, Python trajectory) of a model at its own options."""
-    net, out = model.network, []
-    for compiled in (True, False):
-        y0 = net.initial_state()
-        out.append(integrate(net, y0, 0.0, model.scene.time.end, replace(model.options, compiled=compiled)))
-    return out
-
-
-def pressures(model, traj, times):
-    net = model.network
-    rows = []
-    for t, y in zip(times, traj.sample(times)):
-        net.restore(traj.mode_at(t))
-        rows.append([s.pressure for s in net.states(t, y)])
-    return np.array(rows)
-
-
-def test_each_flow_law_is_one_function_on_both_paths():
-    """The compiled right-hand side inlines the very laws Python calls (numba dispatchers), no mirror copies."""
+def test_each_flow_law_is_one_numba_function():
+    """The compiled right-hand side inlines the very laws Python calls (numba dispatchers), no copies."""
     from exchange import compiled_hosted, compiled_sources, fabric
 
     assert compiled_sources.orifice_mass_flow is orifice.orifice_mass_flow  # (law_flow lives there)
@@ -68,34 +50,15 @@ def test_each_flow_law_is_one_function_on_both_paths():
 
 
 @pytest.mark.parametrize("name", ["blowdown_subsonic", "compression_mesh", "airbag_vented", "airbag_impactor",
-                                  "airbag_impactor_dynamic", "seal_vent"])
-def test_jitted_right_hand_side_equals_network_rhs(name):
-    assert_same_rhs(model_of(name))
-
-
-def assert_same_rhs(model):
-    """The compiled right-hand side against Network.rhs at 21 times along the Python trajectory, to 1e-12."""
-    net, fast = model.network, model.network.compiled_solver()
-    assert fast is not None
-    y0 = net.initial_state()
-    traj = integrate(net, y0, 0.0, model.scene.time.end, replace(model.options, compiled=False))
-    net.restore(net.snapshot())  # the last segment's state, with no spline piece held (the outputs' view)
-    for t in np.linspace(0.0, model.scene.time.end, 23)[1:-1]:
-        y = traj(t)
-        net.begin_segment(t, math.inf)
-        expected = net.rhs(t, y)
-        got = np.empty_like(y)
-        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
-        assert compiled_rhs(fast.model, t, y, got, math.inf)
-        scale = np.abs(expected).max()
-        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * scale), (t, got - expected)
+                                  "seal_vent", "bag_unfold", "deck_hydraulic_two_cavity"])
+def test_right_hand_side_equals_the_reference_assembly(name):
+    assert_rhs_matches_reference(model_of(name))
 
 
 @pytest.mark.parametrize("name", LOWERABLE)
-def test_compiled_path_matches_the_python_path_on_the_library(name):
+def test_compiled_dop853_matches_scipys_on_the_library(name):
     model = model_of(name)
-    fast_traj, slow_traj = both_paths(model)
-    assert (fast_traj.path, slow_traj.path) == ("compiled", "python")
+    fast_traj, slow_traj = both_integrators(model)
     # twin vents (airbag_vented) reach a switch at one instant: which twin's switch fires first is decided by
     # round-off, so compare the kinds of switch in time order
     assert [label.split(":")[1] for _, label in fast_traj.events] == \
@@ -110,7 +73,7 @@ def test_compiled_path_matches_the_python_path_on_the_library(name):
 def test_the_default_path_is_compiled_and_says_so():
     model = model_of("blowdown_choked")
     net = model.network
-    assert model.options.compiled is None and model.options.method == "DOP853"
+    assert model.options.method == "DOP853"
     traj = integrate(net, net.initial_state(), 0.0, 0.5, model.options)
     assert traj.path == "compiled"
     assert traj.stats["steps"] == 3 and traj.stats["rhs_calls"] == 47  # as solve_ivp's DOP853 (docs/benchmarks.md)
@@ -126,9 +89,9 @@ def two_way_scene(folder: Path, p0: float, end: float):
 
 
 @pytest.mark.parametrize("p0, end", [(3e5, 20.0), (100.0, 1.0)])
-def test_equalised_mode_is_the_same_on_both_paths(tmp_path, p0, end):
+def test_equalised_mode_is_the_same_on_both_integrators(tmp_path, p0, end):
     model = two_way_scene(tmp_path, p0, end)
-    fast_traj, slow_traj = both_paths(model)
+    fast_traj, slow_traj = both_integrators(model)
     labels = [label for _, label in slow_traj.events]
     assert labels == [label for _, label in fast_traj.events] and labels[-1] == "vent:equalise"
     np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=1e-6)
@@ -151,7 +114,7 @@ def late_inflation(folder: Path):
 def test_release_reopens_an_equalised_exchange(tmp_path):
     """A tank at ambient (equalised from the start) is pressurised by an inflator from 10 ms: the vent opens."""
     model = late_inflation(tmp_path)
-    fast_traj, slow_traj = both_paths(model)
+    fast_traj, slow_traj = both_integrators(model)
     for traj in (fast_traj, slow_traj):
         assert [label for _, label in traj.events][:1] == ["vent:release"]
         assert 0.01 < traj.events[0][0] < 0.011
@@ -163,8 +126,7 @@ def test_release_reopens_an_equalised_exchange(tmp_path):
 def test_laws_of_ones_own_run_hosted_on_the_compiled_path(tmp_path):
     """A law the compiled path does not carry (a subclass of one it does, a prescribed law written in Python) is
     called in Python from the compiled kernels (exchange/hosted.py): the run is compiled and gives the history of
-    the same law lowered to 1e-12; a law without mass_flow falls back to the Python path, and compiled=True says
-    why."""
+    the same law lowered to 1e-12; a law without mass_flow is refused with the reason."""
     from exchange.laws import FluxLaw, OrificeLaw
 
     class OwnOrifice(OrificeLaw):
@@ -192,8 +154,8 @@ def test_laws_of_ones_own_run_hosted_on_the_compiled_path(tmp_path):
 
     net.exchanges = (replace(net.exchanges[0], law=NoLaw()),)
     assert net.compiled_solver() is None and "NoLaw has no mass_flow" in net.compiled_unsupported()
-    with pytest.raises(SolverError, match="compiled path cannot run"):
-        integrate(net, net.initial_state(), 0.0, 0.1, replace(model.options, compiled=True))
+    with pytest.raises(SolverError, match="the engine cannot run Network: exchange vent: law NoLaw has no mass_flow"):
+        integrate(net, net.initial_state(), 0.0, 0.1, model.options)
 
 
 def test_step_budget_inside_one_segment_on_the_compiled_path(tmp_path):
@@ -203,49 +165,32 @@ def test_step_budget_inside_one_segment_on_the_compiled_path(tmp_path):
     model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
     net = model.network
     with pytest.raises(SolverError, match=r"more than 3 steps before t = [0-9.e+-]+ s; tank: mass"):
-        integrate(net, net.initial_state(), 0.0, 2.0, replace(model.options, max_steps=3, compiled=True))
+        integrate(net, net.initial_state(), 0.0, 2.0, replace(model.options, max_steps=3))
 
 
-# ---- the history read back compiled (exchange.compiled_history, exchange.compiled_peak) against the Python rows
-
-def assert_same_history(model, traj, times=None):
-    """The compiled history equals the row-by-row Python history column by column (≤ 1e-12 of each column's
-    largest magnitude, elementwise), and so do the peak and final values of the summary."""
-    times = np.asarray(model.output_times if times is None else times, dtype=float)
-    readback = compiled_readback(model, traj)
-    assert traj.path == "compiled" and readback is not None
-    fast, slow = readback(times), history_rows(model, traj, times)
-    columns = history_columns(model)
-    assert fast.shape == slow.shape == (times.size, len(columns))
-    for k, name in enumerate(columns):
-        scale = np.max(np.abs(slow[:, k]))
-        np.testing.assert_allclose(fast[:, k], slow[:, k], rtol=1e-12, atol=1e-12 * scale, err_msg=name)
-    y1 = traj(model.scene.time.end)
-    got, want = cavity_summary(model, traj, y1, readback), cavity_summary(model, traj, y1)
-    for cav in want:
-        for key, value in want[cav].items():
-            # the time of a flat maximum moves as √(2 ε p / |p''|): for airbag_impactor's peak (p 2.6e5 Pa,
-            # p'' ≈ -8e8 Pa/s², at 35 ms) that is 4e-10 s, 1.1e-8 of the time (5e-10 s seen); 1e-7 leaves 9x
-            rel = 1e-7 if key == "peak pressure time [s]" else 1e-12
-            assert got[cav][key] == pytest.approx(value, rel=rel, abs=1e-300), (cav, key)
-    return fast
+# ---- the history read back in one compiled call against the rows built point by point
 
 
 def default_run(model):
-    net = model.network
-    return integrate(net, net.initial_state(), 0.0, model.scene.time.end, model.options)
+    return compiled_dop853(model)
 
 
 @pytest.mark.parametrize("name", LOWERABLE)
-def test_compiled_history_equals_the_python_history_on_the_library(name):
+def test_compiled_history_equals_the_pointwise_history_on_the_library(name):
     model = model_of(name)
     traj = default_run(model)
     assert_same_history(model, traj)
-    results = run(model)  # run() takes the compiled reader on this path
+    results = run(model)
     assert results.trajectory.path == "compiled"
     base = [results.columns.index(c) for c in history_columns(model)]  # the state columns (and what they derive)
     np.testing.assert_allclose(results.history[:, base], history_rows(model, results.trajectory, model.output_times),
                                rtol=1e-12, atol=1e-300)
+
+
+@pytest.mark.parametrize("name", SEATED)
+def test_compiled_history_of_the_seated_cases(name):
+    model = model_of(name)
+    assert_same_history(model, default_run(model))
 
 
 def test_every_library_case_on_the_compiled_path_is_compared():
@@ -294,13 +239,6 @@ def test_compiled_history_with_a_time_window_an_amplitude_and_two_cavities(tmp_p
     assert area[rows[:, 0] == 0.02][0] == pytest.approx(2e-4)
 
 
-def test_the_python_path_keeps_the_row_by_row_history():
-    model = model_of("blowdown_choked")
-    net = model.network
-    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
-    assert traj.path == "python" and compiled_readback(model, traj) is None
-
-
 # ---- pop vents (pop, pop-drop, pop-hold) and the fabric / Graefe / linear-resistance laws on the compiled path
 
 def fabric_pop_between_cavities(folder: Path) -> dict:
@@ -345,43 +283,13 @@ LAWS = [{"law": "fabric_leakage", "open_fraction": 0.3, "discharge_coefficient":
         {"law": "linear_resistance", "conductance": 0.05}]
 
 
-def assert_same_on_both_paths(model, events_expected=None, rtol=1e-12, steps=2, event_rtol=1e-12):
-    """Both paths: the same event labels, event times and discrete states to ``event_rtol``, the same steps
-    (± ``steps``), and the compiled history read back equal to the Python path's history column by column
-    (``rtol`` of each column's largest magnitude). Returns the compiled trajectory."""
-    fast_traj, slow_traj = both_paths(model)
-    assert (fast_traj.path, slow_traj.path) == ("compiled", "python")
-    labels = [label for _, label in slow_traj.events]
-    assert [label for _, label in fast_traj.events] == labels
-    if events_expected is not None:
-        assert [label for label in labels if label.split(":")[1].startswith("pop")] == events_expected
-    np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=event_rtol)
-    # steps may part by one or two where the solution is a polynomial in t (a closed vent while the inflow is
-    # constant): the error estimate is then round-off (docs/benchmarks.md, section 1)
-    assert abs(fast_traj.stats["steps"] - slow_traj.stats["steps"]) <= steps
-    assert len(fast_traj.modes) == len(slow_traj.modes)
-    for fast_mode, slow_mode in zip(fast_traj.modes, slow_traj.modes):
-        assert (fast_mode[0], fast_mode[2], fast_mode[3]) == (slow_mode[0], slow_mode[2], slow_mode[3])
-        assert [h is None for h in fast_mode[1]] == [h is None for h in slow_mode[1]]
-        np.testing.assert_allclose([h for h in fast_mode[1] if h is not None],
-                                   [h for h in slow_mode[1] if h is not None], rtol=event_rtol)
-    # at an event time the two paths agree on to the last bit, both read the same side of the switch; where
-    # round-off parts them (by ~1e-16 s) a row at one path's event time would read the two sides of it
-    same = [t for (t, _), (tf, _) in zip(slow_traj.events, fast_traj.events) if t == tf]
-    times = np.union1d(np.asarray(model.output_times), same)
-    fast, slow = compiled_readback(model, fast_traj)(times), history_rows(model, slow_traj, times)
-    for k, name in enumerate(history_columns(model)):
-        scale = np.max(np.abs(slow[:, k]))
-        np.testing.assert_allclose(fast[:, k], slow[:, k], rtol=rtol, atol=rtol * scale, err_msg=name)
-    return fast_traj
-
-
 @pytest.mark.parametrize("name, pops", [("pop", ["vent:pop"]), ("pop-hold", ["vent:pop", "vent:pop-hold"]),
                                         ("pop-hold reset", ["vent:pop", "vent:pop-drop"]),
                                         ("fabric pop between cavities", ["seam:pop", "seam:pop-hold"])])
-def test_pop_vents_are_the_same_on_both_paths(tmp_path, name, pops):
+def test_pop_vents_are_the_same_on_both_integrators(tmp_path, name, pops):
     model = build_model(scene_from_dict(POP_SCENES[name](tmp_path), tmp_path / "scene.toml"))
-    traj = assert_same_on_both_paths(model, pops)
+    assert_rhs_matches_reference(model)
+    traj = assert_same_on_both_integrators(model, pops)
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
 
 
@@ -400,7 +308,7 @@ def test_pop_vents_run_compiled(tmp_path, name):
 
 
 def test_the_pop_vent_mode_is_left_on_the_network(tmp_path):
-    """After a compiled run the network holds the final discrete state, as after the Python path."""
+    """After a run the network holds the final discrete state."""
     model = build_model(scene_from_dict(fill_with_pop(5.0e4, 0.004), tmp_path / "scene.toml"))
     traj = default_run(model)
     net = model.network
@@ -414,43 +322,26 @@ def test_the_pop_vent_mode_is_left_on_the_network(tmp_path):
 
 @pytest.mark.parametrize("law", LAWS, ids=[law["law"] for law in LAWS])
 @pytest.mark.parametrize("two_way, to_cavity", [(False, False), (True, False), (False, True)])
-def test_fabric_and_resistance_laws_are_the_same_on_both_paths(tmp_path, law, two_way, to_cavity):
+def test_fabric_and_resistance_laws_are_the_same_on_both_integrators(tmp_path, law, two_way, to_cavity):
     model = build_model(scene_from_dict(law_scene(tmp_path, law, two_way, to_cavity), tmp_path / "scene.toml"))
-    traj = assert_same_on_both_paths(model)
+    assert_rhs_matches_reference(model)
+    traj = assert_same_on_both_integrators(model)
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
     assert run(model).summary["solver"]["path"] == "compiled"
-
-
-def test_jitted_right_hand_side_with_pop_fabric_graefe_equals_network_rhs(tmp_path):
-    """The fabric/Graefe/orifice scene with a pop vent: the compiled RHS in each segment's discrete state (as
-    CompiledNetwork.run sets it from the network) equals Network.rhs."""
-    model = build_model(scene_from_dict(fabric_pop_between_cavities(tmp_path), tmp_path / "scene.toml"))
-    net, fast = model.network, model.network.compiled_solver()
-    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
-    for t in np.linspace(0.0, model.scene.time.end, 41)[1:-1]:
-        y = traj(t)
-        net.restore(traj.mode_at(t))
-        fast.model[20][:] = net.equalised
-        fast.model[21][:] = [0 if ex.activation and ex.activation.pop_pressure is not None and not p else 1
-                             for ex, p in zip(net.exchanges, net.popped)]
-        expected = net.rhs(t, y)
-        got = np.empty_like(y)
-        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
-        assert compiled_rhs(fast.model, t, y, got, math.inf)
-        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * np.abs(expected).max()), (t, got - expected)
 
 
 @pytest.mark.parametrize("name, method", [("airbag_vented", "LSODA"), ("airbag_impactor", "Radau"),
                                           ("airbag_impactor_dynamic", "RK45"), ("seal_vent", "BDF"),
                                           ("bag_unfold", "LSODA")])
-def test_other_methods_run_on_the_compiled_right_hand_side(name, method):
-    """solve_ivp's other methods integrate the same compiled right-hand side as DOP853 ("compiled, solve_ivp"),
-    and agree with the Python right-hand side (compiled=False) far inside the scene's rtol: identical RHS values
-    give identical steps, up to round-off in the implicit methods' finite-difference Jacobians."""
+def test_other_methods_run_on_the_compiled_engine(name, method):
+    """solve_ivp's other methods step the same compiled right-hand side, switches and switch actions as DOP853
+    ("compiled, solve_ivp"): at rtol 1e-10 they land within 100·rtol of the scene of the compiled DOP853's history
+    at rtol 1e-10 (at the scene's rtol the DOP853 itself is only that close: airbag_impactor_dynamic 3.6e-7 in
+    pressure at 1e-8, docs/benchmarks.md), with the same contact and pop events."""
     model = model_of(name)
-    runs = {c: run(replace(model, options=replace(model.options, method=method, compiled=c))) for c in (None, False)}
-    fast, slow = runs[None], runs[False]
-    assert fast.summary["solver"]["path"] == "compiled, solve_ivp"
-    assert slow.summary["solver"]["path"] == "python"
-    scale = np.maximum(np.max(np.abs(slow.history), axis=0), 1e-300)
-    assert np.max(np.abs(fast.history - slow.history) / scale) < 100 * model.options.rtol
+    fast, other = (run(replace(model, options=replace(model.options, method=m, rtol=1e-10))) for m in ("DOP853", method))
+    assert other.summary["solver"]["path"] == "compiled, solve_ivp"
+    assert [label for _, label in other.trajectory.events if ":contact" in label or ":pop" in label] == \
+        [label for _, label in fast.trajectory.events if ":contact" in label or ":pop" in label]
+    scale = np.maximum(np.max(np.abs(fast.history), axis=0), 1e-300)
+    assert np.max(np.abs(other.history - fast.history) / scale) < 100 * model.options.rtol

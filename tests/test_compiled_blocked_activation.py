@@ -1,4 +1,4 @@
-"""Activations on blocked leakage areas run compiled and match the Python path: pop vents on the library's airbag
+"""Activations on blocked leakage areas on the engine, the compiled DOP853 against scipy's: pop vents on the library's airbag
 (area steps of time), its dynamic-body twin (areas of the body's displacement) and the seal (blocked by a flange),
 with and without a hold time; DELTA LEAKAGE AREA on the dynamic-body airbag's vent, opened by time or by a pop (the
 area it subtracts is the body's at that moment, known only during the run)."""
@@ -9,9 +9,9 @@ import pytest
 
 from cases.model.build import build_model
 from cases.run.library import CASES, HERE
-from cases.run.runner import compiled_readback, history_columns, history_rows
+from cases.results.readback import history_columns, history_rows
 from cases.scene.files import load_scene
-from tests.test_compiled import both_paths
+from tests.engine_pairs import assert_same_history as assert_same_readback, both_integrators
 
 #: (case, pop pressure above ambient [Pa]): each pops mid-run (airbags peak near 1.6e5 Pa gauge, the seal near
 #: 2.1e5 Pa gauge after starting at 2.0e5 Pa)
@@ -25,10 +25,11 @@ def popped_model(name: str, pop: float, hold: float, **activation):
 
 
 def assert_same_history(model, fast, slow):
-    """Every history column (areas, flows, pressures) read back compiled within 10·rtol of the Python path's at
-    the output times (of each column's largest magnitude); returns the Python path's history and its columns."""
+    """Every history column (areas, flows, pressures) of the compiled DOP853 within 10·rtol of scipy's at the
+    output times (of each column's largest magnitude), each read back compiled and pointwise alike; returns
+    scipy's history and its columns."""
     times = np.asarray(model.output_times)
-    a, b = compiled_readback(model, fast)(times), history_rows(model, slow, times)
+    a, b = assert_same_readback(model, fast), history_rows(model, slow, times)
     columns = history_columns(model)
     for k, column in enumerate(columns):
         scale = np.max(np.abs(b[:, k]))
@@ -39,14 +40,13 @@ def assert_same_history(model, fast, slow):
 
 @pytest.mark.parametrize("hold", [0.0, 0.002], ids=["pop", "pop-hold"])
 @pytest.mark.parametrize("name, pop", CASES_WITH_POP, ids=[c for c, _ in CASES_WITH_POP])
-def test_a_pop_vent_on_a_blocked_area_is_the_same_on_both_paths(name, pop, hold):
+def test_a_pop_vent_on_a_blocked_area_is_the_same_on_both_integrators(name, pop, hold):
     """Same events (the pop among them) at the same times (1e-9), steps within 2, and every history column
-    (areas, flows, pressures) read back compiled within 10·rtol of the Python path's at the output times."""
+    (areas, flows, pressures) within 10·rtol of each other at the output times."""
     model = popped_model(name, pop, hold)
     net = model.network
     assert net.compiled_unsupported() is None
-    fast, slow = both_paths(model)
-    assert (fast.path, slow.path) == ("compiled", "python")
+    fast, slow = both_integrators(model)
     labels = [label for _, label in slow.events]
     assert [label for _, label in fast.events] == labels
     pops = [t for t, label in slow.events if label.endswith(":pop-hold" if hold else ":pop")]
@@ -68,8 +68,7 @@ def test_delta_area_on_an_area_that_follows_the_dynamic_body(how):
     pop, opened = (0.0, 0.022) if how == "by time" else (8.0e4, 0.0)  # pop_pressure 0: none
     model = popped_model("airbag_impactor_dynamic", pop, 0.0, open_time=opened, delta_area=True)
     assert model.network.compiled_unsupported() is None
-    fast, slow = both_paths(model)
-    assert (fast.path, slow.path) == ("compiled", "python")
+    fast, slow = both_integrators(model)
     assert [label for _, label in fast.events] == [label for _, label in slow.events]
     np.testing.assert_allclose([t for t, _ in fast.events], [t for t, _ in slow.events], rtol=1e-9)
     b, columns = assert_same_history(model, fast, slow)

@@ -1,10 +1,11 @@
-"""PRESSURE AND MASS and DUAL PRESSURE inflators on the compiled path (exchange.compiled_inflators,
-exchange.compiled_sources.inflator_flow) against the Python path and against an independent reference.
+"""PRESSURE AND MASS and DUAL PRESSURE inflators on the engine (exchange.compiled_inflators,
+exchange.compiled_sources.inflator_flow): its two integrators against each other, its right-hand side against the
+reference assembly, and against an independent reference.
 
 The scene: a vented 60 L tank of constant-cp N2 fed from 5 ms (scale 0.9) by an inflator of Abaqus-deck air, whose
 cp polynomial makes γ depend on T_i; the inflator's tables kink at different times (the integrator must stop at
-each) and the tank test's pressure falls at the end (no flow). Both paths call the same numba law, so the paths
-are also checked against a reference written here: T_i(t) solved to convergence by brentq with the mixture's own
+each) and the tank test's pressure falls at the end (no flow). Engine and Python inflator call the same numba law,
+so both are also checked against a reference written here: T_i(t) solved to convergence by brentq with the mixture's own
 γ(T), and the inflator enthalpy the run delivered against the quadrature of ṁ·h(T_i) between the breakpoints.
 """
 import math
@@ -23,7 +24,7 @@ from cavity.integration import integrate
 from cavity.inflator_orifice import GAMMA_ITERATIONS, dual_pressure_state, pressure_mass_state
 from exchange.orifice import choked_flow_factor
 from tests.scenes import tank
-from tests.test_compiled import assert_same_rhs
+from tests.engine_pairs import assert_rhs_matches_reference as assert_same_rhs, both_integrators
 
 AIR = {"name": "AIR", "molar_mass": 0.0289, "cp": [28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0]}  # Abaqus deck
 START, SCALE, AREA, CD, V_TANK = 0.005, 0.9, 2e-5, 0.9, 0.06
@@ -48,12 +49,6 @@ def orifice_model(folder, kind: str, **inflator):
     return build_model(scene_from_dict(data, folder / "scene.toml"))
 
 
-def both(model):
-    net = model.network
-    return [integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=c))
-            for c in (None, False)]
-
-
 def reference_state(inf, t):
     """(ṁ, T_i) of the inflator at t with T_i the converged root of the orifice relation (brentq), γ from the
     inflator gas's own :meth:`cavity.gas.Mixture.gamma`."""
@@ -76,11 +71,10 @@ def reference_state(inf, t):
 
 
 @pytest.mark.parametrize("kind", ["pressure_mass", "dual_pressure"])
-def test_orifice_inflators_run_compiled_and_match_the_python_path(tmp_path, kind):
+def test_orifice_inflators_are_the_same_on_both_integrators(tmp_path, kind):
     """Same events, steps within 2, every state column within 10·rtol (rtol 1e-10) at every output time."""
     model = orifice_model(tmp_path, kind)
-    fast, slow = both(model)
-    assert (fast.path, slow.path) == ("compiled", "python")
+    fast, slow = both_integrators(model)
     assert [label for _, label in fast.events] == [label for _, label in slow.events]
     assert abs(fast.stats["steps"] - slow.stats["steps"]) <= 2
     times = np.asarray(model.output_times)
@@ -142,23 +136,21 @@ def test_the_fixed_point_has_converged():
 
 
 @pytest.mark.parametrize("kind", ["pressure_mass", "dual_pressure"])
-def test_jitted_right_hand_side_equals_network_rhs(tmp_path, kind):
-    """The compiled right-hand side against Network.rhs along the Python trajectory, to 1e-12."""
+def test_right_hand_side_equals_the_reference_assembly(tmp_path, kind):
+    """The compiled right-hand side against the reference assembly along the trajectory, to 1e-12."""
     assert_same_rhs(orifice_model(tmp_path, kind))
 
 
-@pytest.mark.parametrize("compiled, method, path", [(None, "DOP853", "compiled"), (False, "DOP853", "python"),
-                                                    (None, "LSODA", "compiled, solve_ivp")])
-def test_a_clamped_temperature_is_warned_on_every_path(tmp_path, compiled, method, path):
-    """An inflator pressure far too high for its mass flow: T_i held at 10⁴ K, warned (once per message) on the
-    Python path, after a compiled run, and from the compiled right-hand side under solve_ivp."""
+@pytest.mark.parametrize("method, path", [("DOP853", "compiled"), ("LSODA", "compiled, solve_ivp")])
+def test_a_clamped_temperature_is_warned_on_every_path(tmp_path, method, path):
+    """An inflator pressure far too high for its mass flow: T_i held at 10⁴ K, warned (once per message) after a
+    compiled DOP853 run and from the compiled right-hand side under solve_ivp."""
     (tmp_path / "hot.csv").write_text("t,p\n0,1e9\n1,1e9\n")
     model = orifice_model(tmp_path, "pressure_mass", inflator_pressure="hot.csv")
     net = model.network
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", VentsimWarning)
-        traj = integrate(net, net.initial_state(), 0.0, 0.02, replace(model.options, compiled=compiled,
-                                                                        method=method))
+        traj = integrate(net, net.initial_state(), 0.0, 0.02, replace(model.options, method=method))
     assert traj.stats.get("path", traj.path) == path
     messages = {str(w.message) for w in caught if issubclass(w.category, VentsimWarning)}
     assert messages == {"inflator 'gen': the gas temperature from the orifice relation left [50, 10000] K and was "

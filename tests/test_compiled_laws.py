@@ -1,12 +1,13 @@
 """Tabulated, prescribed and bulk-viscosity laws, discharge-coefficient tables and tank-test inflators on the
-compiled path, against the Python path (``SolverOptions.compiled=False``), which calls the same numba laws.
+engine.
 
-Per law: the compiled right-hand side equals ``Network.rhs`` along a trajectory (1e-12), and a whole run gives
-the same events, discrete states and history column by column (1e-12 of each column's largest magnitude:
-tests.test_compiled.assert_same_on_both_paths). Plus closed forms: the prescribed flux moves exactly its mass,
-the tank-test inflator retraces its tank curve, and the laws are the numba kernels the compiled path inlines.
+Per law: the compiled right-hand side equals the reference assembled from the Python objects along a trajectory
+(1e-12, tests.engine_pairs.assert_rhs_matches_reference), the compiled DOP853 and scipy's DOP853 on the same
+network give the same events, discrete states and history column by column (1e-12 of each column's largest
+magnitude), and the history read back compiled equals the pointwise one. Plus closed forms: the prescribed flux
+moves exactly its mass, the tank-test inflator retraces its tank curve, and the laws are the numba kernels the
+engine inlines.
 """
-import math
 import tomllib
 from dataclasses import replace
 
@@ -15,12 +16,14 @@ import pytest
 
 from cases.model.build import build_model
 from cases.run.library import CASES, HERE
-from cases.run.runner import compiled_readback, history_columns, history_rows, run
+from cases.results.readback import history_columns, history_rows
+from cases.run.runner import run
 from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import integrate
-from exchange.compiled_solver import rhs as compiled_rhs
+from tests.engine_pairs import (assert_rhs_matches_reference as assert_same_rhs, assert_same_history,
+                                assert_same_on_both_integrators, both_integrators, scipy_dop853)
 from tests.scenes import tank
-from tests.test_compiled import assert_same_history, assert_same_on_both_paths, both_paths, law_scene
+from tests.test_compiled import law_scene
 from tests.test_exchange_scenes import fill_with_pop
 from tests.test_hydraulic import K, P0, oil_scene
 
@@ -58,28 +61,6 @@ def tank_test_model(folder):
     return build_model(scene_from_dict(data, folder / "scene.toml"))
 
 
-def assert_same_rhs(model, samples=31):
-    """The compiled right-hand side equals Network.rhs at points of the Python trajectory, in its discrete
-    state there."""
-    net, fast = model.network, model.network.compiled_solver()
-    assert fast is not None, net.compiled_unsupported()
-    traj = integrate(net, net.initial_state(), 0.0, model.scene.time.end, replace(model.options, compiled=False))
-    for t in np.linspace(0.0, model.scene.time.end, samples)[1:-1]:
-        y = traj(t)
-        net.restore(traj.mode_at(t))
-        net.begin_segment(t, math.inf)
-        fast.model[20][:] = net.equalised
-        for j, ex in enumerate(net.exchanges):  # a pop vent: popped or not, its area at activation
-            if ex.activation is not None and ex.activation.pop_pressure is not None:
-                fast.model[21][j] = int(net.popped[j])
-                fast.model[13][j, 9] = net.area_at_activation[j] or 0.0
-        expected = net.rhs(t, y)
-        got = np.empty_like(y)
-        fast.model[16][:] = [s.temperature for s in net.states(t, y)]
-        assert compiled_rhs(fast.model, t, y, got, math.inf)
-        assert np.allclose(got, expected, rtol=1e-12, atol=1e-13 * np.abs(expected).max()), (t, got - expected)
-
-
 # a law's kinks in the state (rows of a leakage table, of a Cd table of pressure) are switches
 # (exchange.law_kinks); the step that reaches one straddles it, and the kink is located on that step's dense
 # output, which the kink spoils: the two integrators (equal right-hand sides, steps that part by round-off near
@@ -93,23 +74,23 @@ CONFIGS = [(False, False), (True, False), (False, True)]
 
 @pytest.mark.parametrize("name", list(LAWS))
 @pytest.mark.parametrize("two_way, to_cavity", CONFIGS, ids=["to ambient", "two-way inflow", "to a cavity"])
-def test_law_is_the_same_on_both_paths(tmp_path, name, two_way, to_cavity):
+def test_law_is_the_same_on_both_integrators(tmp_path, name, two_way, to_cavity):
     model = law_model(tmp_path, name, two_way, to_cavity)
     assert model.network.compiled_unsupported() is None
     assert_same_rhs(model)
-    traj = assert_same_on_both_paths(model, **PARTING.get(name, {}))
+    traj = assert_same_on_both_integrators(model, **PARTING.get(name, {}))
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
 
 
-def test_tank_test_inflator_is_the_same_on_both_paths(tmp_path):
+def test_tank_test_inflator_is_the_same_on_both_integrators(tmp_path):
     model = tank_test_model(tmp_path)
     assert model.network.compiled_unsupported() is None
     assert_same_rhs(model)
-    traj = assert_same_on_both_paths(model)
+    traj = assert_same_on_both_integrators(model)
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
 
 
-def test_delta_leakage_area_opened_by_time_is_the_same_on_both_paths():
+def test_delta_leakage_area_opened_by_time_is_the_same_on_both_integrators():
     """airbag_impactor's vent, which the headform covers and uncovers, with DELTA LEAKAGE AREA opened at 20 ms:
     it flows through the area uncovered since."""
     with open(HERE / CASES["airbag_impactor"], "rb") as f:
@@ -118,14 +99,14 @@ def test_delta_leakage_area_opened_by_time_is_the_same_on_both_paths():
     model = build_model(scene_from_dict(data, HERE / CASES["airbag_impactor"]))
     assert model.network.compiled_unsupported() is None
     assert_same_rhs(model, samples=13)
-    fast_traj, slow_traj = both_paths(model)
+    fast_traj, slow_traj = both_integrators(model)
     assert [label for _, label in fast_traj.events] == [label for _, label in slow_traj.events]
     np.testing.assert_allclose([t for t, _ in fast_traj.events], [t for t, _ in slow_traj.events], rtol=1e-10)
     # while the headform covers more than at 20 ms the vent is shut and the inflow a table: the steps' error
     # estimates are round-off and the paths part by two steps, 1.5e-9 in pressure (the scene's rtol is 1e-8;
     # the unmodified scene agrees to 6e-13)
     times = np.asarray(model.output_times)
-    fast, slow = compiled_readback(model, fast_traj)(times), history_rows(model, slow_traj, times)
+    fast, slow = history_rows(model, fast_traj, times), history_rows(model, slow_traj, times)
     for k, name in enumerate(history_columns(model)):
         scale = np.max(np.abs(slow[:, k]))
         np.testing.assert_allclose(fast[:, k], slow[:, k], rtol=1e-8, atol=1e-8 * scale, err_msg=name)
@@ -133,7 +114,7 @@ def test_delta_leakage_area_opened_by_time_is_the_same_on_both_paths():
     assert np.all(area[times < 0.02] == 0.0) and np.max(area) > 1e-5  # uncovered after it opened
 
 
-def test_delta_leakage_area_of_a_pop_vent_is_the_same_on_both_paths(tmp_path):
+def test_delta_leakage_area_of_a_pop_vent_is_the_same_on_both_integrators(tmp_path):
     """A pop vent of constant area with DELTA LEAKAGE AREA: after the pop it carries the area gained since, none;
     the pop, its hold and the area at activation are the same on both paths."""
     data = fill_with_pop(5.0e4, 0.004)
@@ -141,7 +122,7 @@ def test_delta_leakage_area_of_a_pop_vent_is_the_same_on_both_paths(tmp_path):
     model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
     assert model.network.compiled_unsupported() is None
     assert_same_rhs(model)
-    traj = assert_same_on_both_paths(model, ["vent:pop", "vent:pop-hold"])
+    traj = assert_same_on_both_integrators(model, ["vent:pop", "vent:pop-hold"])
     rows = assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
     assert np.all(rows[:, history_columns(model).index("vent.area [m^2]")] == 0.0)
     assert traj.modes[-1][2] == (5e-4,) and model.network.area_at_activation == [5e-4]
@@ -176,7 +157,7 @@ def test_prescribed_mass_flux_moves_exactly_its_mass_compiled(tmp_path):
 
 
 def test_the_laws_are_numba_kernels():
-    """Each law exists once: the Python path calls the numba kernel the compiled path inlines."""
+    """Each law exists once: Python calls the numba kernel the engine inlines."""
     from cavity import hydraulic, inflator
     from exchange import bulk_viscosity, compiled_sources, flux, leakage_table
 
@@ -192,12 +173,11 @@ def test_the_laws_are_numba_kernels():
 @pytest.mark.parametrize("name", ["mass_rate_leakage", "orifice Cd(p)"])
 def test_kinked_laws_are_accurate_compiled(tmp_path, name):
     """Brute-force reference: across the kinks of a table law (switches there) the compiled run at rtol 1e-10
-    stays within 10·rtol of the Python path at rtol 1e-13."""
+    stays within 10·rtol of scipy's DOP853 on the same network at rtol 1e-13."""
     model = law_model(tmp_path, name)
     net, times = model.network, np.asarray(model.output_times)
     fast = integrate(net, net.initial_state(), 0.0, model.scene.time.end, model.options)
-    ref = integrate(net, net.initial_state(), 0.0, model.scene.time.end,
-                    replace(model.options, compiled=False, rtol=1e-13, atol=1e-20))
+    ref = scipy_dop853(model, replace(model.options, rtol=1e-13, atol=1e-20))
     assert fast.path == "compiled" and any(":kink" in label for _, label in fast.events)
     p_fast = np.array([net.states(t, y)[0].pressure for t, y in zip(times, fast.sample(times))])
     p_ref = np.array([net.states(t, y)[0].pressure for t, y in zip(times, ref.sample(times))])
@@ -214,20 +194,20 @@ def oil_model(folder, exchange):
 
 @pytest.mark.parametrize("leak", [None, {"name": "leak", "from": "seal", "area": 1e-5, "law": "volume_rate_leakage",
                                          "leakage_table": "leak.csv"}], ids=["closed", "leaking"])
-def test_hydraulic_cavity_is_the_same_on_both_paths(tmp_path, leak):
+def test_hydraulic_cavity_is_the_same_on_both_integrators(tmp_path, leak):
     (tmp_path / "leak.csv").write_text("dp,q\n0,0\n1e6,1e-3\n1e8,5e-3\n")
     model = oil_model(tmp_path, leak)
     assert model.network.compiled_unsupported() is None
     assert_same_rhs(model)
-    traj = assert_same_on_both_paths(model, **(PARTING["volume_rate_leakage"] if leak else {}))
+    traj = assert_same_on_both_integrators(model, **(PARTING["volume_rate_leakage"] if leak else {}))
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
 
 
-def test_hydraulic_deck_is_the_same_on_both_paths():
+def test_hydraulic_deck_is_the_same_on_both_integrators():
     model = build_model(load_scene(HERE / CASES["deck_hydraulic_two_cavity"]))
     assert model.network.compiled_unsupported() is None
     assert_same_rhs(model)
-    traj = assert_same_on_both_paths(model, **PARTING["volume_rate_leakage"])
+    traj = assert_same_on_both_integrators(model, **PARTING["volume_rate_leakage"])
     assert_same_history(model, traj, np.union1d(model.output_times, [t for t, _ in traj.events]))
 
 
@@ -242,16 +222,16 @@ def test_closed_hydraulic_cavity_follows_the_log_law_compiled(tmp_path):
 
 @pytest.mark.parametrize("name, method", [("orifice Cd(p)", "LSODA"), ("mass_flux", "RK45"),
                                           ("bulk_viscosity", "BDF"), ("pop delta", "RK45")])
-def test_other_methods_run_on_the_compiled_right_hand_side(tmp_path, name, method):
-    """solve_ivp's other methods on the compiled right-hand side of these laws agree with the Python one."""
+def test_other_methods_run_on_the_compiled_engine(tmp_path, name, method):
+    """solve_ivp's other methods on the engine agree with its compiled DOP853, both at rtol 1e-10, to 100 times
+    the scene's rtol."""
     if name == "pop delta":
         data = fill_with_pop(5.0e4, 0.004)
         data["exchange"][0]["delta_area"] = True
         model = build_model(scene_from_dict(data, tmp_path / "scene.toml"))
     else:
         model = law_model(tmp_path, name, to_cavity=True)
-    runs = {c: run(replace(model, options=replace(model.options, method=method, compiled=c))) for c in (None, False)}
-    fast, slow = runs[None], runs[False]
-    assert (fast.summary["solver"]["path"], slow.summary["solver"]["path"]) == ("compiled, solve_ivp", "python")
-    scale = np.maximum(np.max(np.abs(slow.history), axis=0), 1e-300)
-    assert np.max(np.abs(fast.history - slow.history) / scale) < 100 * model.options.rtol
+    fast, other = (run(replace(model, options=replace(model.options, method=m, rtol=1e-10))) for m in ("DOP853", method))
+    assert other.summary["solver"]["path"] == "compiled, solve_ivp"
+    scale = np.maximum(np.max(np.abs(fast.history), axis=0), 1e-300)
+    assert np.max(np.abs(other.history - fast.history) / scale) < 100 * model.options.rtol

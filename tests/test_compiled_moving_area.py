@@ -1,5 +1,6 @@
-"""Leakage surfaces on a vertex trajectory on the compiled path: the same histories as the Python path, and the
-area the solver used equal to blockage.evaluate of the surface placed at each output time (brute force)."""
+"""Leakage surfaces on a vertex trajectory on the engine: the same histories on its two integrators (compiled
+DOP853 and scipy's), and the area the solver used equal to blockage.evaluate of the surface placed at each output
+time (brute force)."""
 from dataclasses import replace
 
 import numpy as np
@@ -14,10 +15,10 @@ from tests.scenes import tank
 from tests.test_blockage_over_time import TOL, grid_vent, tilted_plate
 
 
-def both_paths(model):
-    runs = {c: run(replace(model, options=replace(model.options, compiled=c))) for c in (None, False)}
-    assert (runs[None].summary["solver"]["path"], runs[False].summary["solver"]["path"]) == ("compiled", "python")
-    return runs[None], runs[False]
+def both_integrators(model):
+    runs = [run(replace(model, options=replace(model.options, integrator=i))) for i in ("compiled", "scipy")]
+    assert [r.summary["solver"]["path"] for r in runs] == ["compiled", "compiled, solve_ivp"]
+    return runs
 
 
 def largest_difference(fast, slow) -> float:
@@ -25,12 +26,12 @@ def largest_difference(fast, slow) -> float:
     return float(np.max(np.abs(fast.history - slow.history) / scale))
 
 
-def test_bag_unfold_runs_compiled_with_the_python_paths_history():
+def test_bag_unfold_has_the_same_history_on_both_integrators():
     """The library's bag (also in tests/test_compiled.py's library comparison): its vent is cut from the cavity's
-    mesh series and blocked by the bag's own top sheet. The two paths take the same steps; every column of the
+    mesh series and blocked by the bag's own top sheet. The two integrators take the same steps; every column of the
     history agrees to 2.4e-8 of its peak (the vent's flow, where round-off in the error estimate grows while it
     nears equilibrium; 2.5e-10 in pressure), far inside ``ventsim check``'s 1e-6."""
-    fast, slow = both_paths(build_model(load_scene(ROOT / "cases" / "bag_unfold.toml")))
+    fast, slow = both_integrators(build_model(load_scene(ROOT / "cases" / "bag_unfold.toml")))
     assert fast.summary["solver"]["steps"] == slow.summary["solver"]["steps"]
     assert largest_difference(fast, slow) < 1e-7
     area = fast.history[:, fast.columns.index("vent.area [m^2]")]
@@ -58,15 +59,15 @@ def stretching_vent(tmp_path):
     return build_model(scene_from_dict(data, tmp_path / "scene.toml")), (times, frames, x0.faces)
 
 
-def test_a_stretching_vent_series_with_a_brief_contact_runs_compiled_with_the_brute_force_area(tmp_path):
+def test_a_stretching_vent_series_with_a_brief_contact_has_the_brute_force_area(tmp_path):
     """The compiled path's area at every output time equals the leak area blockage.evaluate finds on the surface
     moved there (its own active nodes, its own face areas): it would differ if the blocked weights or the face
-    areas between frames were wrong; and the histories equal the Python path's."""
+    areas between frames were wrong; and the histories agree on both integrators."""
     model, (times, frames, faces) = stretching_vent(tmp_path)
     track = model.network.areas[0].track
     assert len(track.crossings) >= 4 and 0 < max(track.actives) < len(track.source.initial)  # partly blocked
     assert set(times) <= set(model.network.breakpoints)  # the face areas' kinks are stops
-    fast, slow = both_paths(model)
+    fast, slow = both_integrators(model)
     assert largest_difference(fast, slow) < 100 * model.options.rtol
     plate = blockage.Blocker(tilted_plate())
     t, area = fast.history[:, 0], fast.history[:, fast.columns.index("vent.area [m^2]")]

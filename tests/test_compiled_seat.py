@@ -1,9 +1,10 @@
-"""Seat contact on the compiled DOP853 path against the Python (solve_ivp) path: the relief valves, seat variants.
+"""Seat contact on the engine, its compiled DOP853 against scipy's DOP853 stepping the same kernels: the relief
+valves, seat variants.
 
-The two paths run the same algorithm on the same contact kernels (exchange/contact_laws.py); they differ only by
-round-off in the gas states, which moves step sizes where the error estimate is itself round-off (a constant-rate
-fill). So the events must be the same, in the same order, and the histories must agree to the solver's
-tolerance, converging together as rtol shrinks.
+The two integrators run the same algorithm on the same contact kernels (exchange/contact_laws.py,
+exchange/compiled_body.py); they differ only by round-off (sums in another order), which moves step sizes where
+the error estimate is itself round-off (a constant-rate fill). So the events must be the same, in the same order,
+and the histories must agree to the solver's tolerance, converging together as rtol shrinks.
 """
 import copy
 import dataclasses
@@ -21,14 +22,14 @@ CASES = Path(__file__).resolve().parents[1] / "cases"
 
 
 def both(scene, rtol=None):
-    """(compiled, Python) Results of one scene."""
+    """(compiled DOP853, scipy DOP853) Results of one scene."""
     out = []
-    for compiled in (True, False):
+    for integrator in ("compiled", "scipy"):
         model = build_model(scene)
         if rtol is not None:
             o = model.options
             model.options = dataclasses.replace(o, rtol=rtol, atol=o.atol * rtol / o.rtol)
-        model.options = dataclasses.replace(model.options, compiled=compiled)
+        model.options = dataclasses.replace(model.options, integrator=integrator)
         out.append(run(model))
     return out
 
@@ -39,7 +40,7 @@ def peak_relative(a, b) -> np.ndarray:
 
 
 def assert_same_run(fast, slow, history_tol, time_tol=1e-9):
-    assert fast.summary["solver"]["path"] == "compiled" and slow.summary["solver"]["path"] == "python"
+    assert fast.summary["solver"]["path"] == "compiled" and slow.summary["solver"]["path"] == "compiled, solve_ivp"
     ef, es = fast.summary["solver"]["event log"], slow.summary["solver"]["event log"]
     assert [label for _, label in ef] == [label for _, label in es]
     assert max((abs(a[0] - b[0]) for a, b in zip(ef, es)), default=0.0) <= time_tol
@@ -55,7 +56,7 @@ def assert_same_run(fast, slow, history_tol, time_tol=1e-9):
 
 
 @pytest.mark.parametrize("name", ["relief_valve", "relief_valve_undamped"])
-def test_relief_valves_run_compiled_with_the_python_paths_events_and_history(name):
+def test_relief_valves_have_the_same_events_and_history_on_both_integrators(name):
     """At the case's rtol 1e-9: same 97–107 events (observed times within 4e-11 s), histories within 1e-6 of
     each column's peak (observed 6e-8, the poppet's 25 µm lift being the most sensitive column), every opening
     at the preload's pressure."""
@@ -64,10 +65,10 @@ def test_relief_valves_run_compiled_with_the_python_paths_events_and_history(nam
     assert cf["lift-offs"] >= 19
     assert cf["opening pressure max relative error [-]"] <= 1e-12
     assert np.allclose(cf["impact speeds [m/s]"], cs["impact speeds [m/s]"], rtol=1e-6)
-    assert fast.summary["solver"]["steps"] == pytest.approx(slow.summary["solver"]["steps"], abs=5)
+    assert fast.summary["solver"]["steps"] == pytest.approx(slow.summary["solver"]["steps"], abs=10)  # 500 vs 507
 
 
-def test_the_two_paths_converge_together_as_rtol_shrinks():
+def test_the_two_integrators_converge_together_as_rtol_shrinks():
     """The difference is the solver's tolerance, not the model: at rtol 1e-12 the relief valve's histories agree
     to 1e-9 of each peak (observed 3e-10; 6e-8 at 1e-9)."""
     data = copy.deepcopy(read_scene_data(CASES / "relief_valve.toml"))
@@ -95,8 +96,8 @@ def scene(data):
     ("softened drop, standard damping", 1e-9),
     ("hard drop under gravity, explicit damping", 1e-9),
 ])
-def test_seat_variants_compiled_equal_python(variant, tol):
-    """Every law and damping style through both paths: same events (kinks, seat switches, impacts), same
+def test_seat_variants_are_the_same_on_both_integrators(variant, tol):
+    """Every law and damping style through both integrators: same events (kinks, seat switches, impacts), same
     histories and CPRESS (observed 4e-9 of the peaks on the relief variant at rtol 1e-9; on the drops at 1e-10,
     ≤ 1.2e-12 on one machine and 3.4e-10 on another, whose numba and numpy round differently: the round-off moves
     a step size where the error estimate is itself round-off, so the bound is 10 rtol, not a round-off figure)."""
@@ -120,19 +121,19 @@ def test_seat_variants_compiled_equal_python(variant, tol):
         assert cf["reseats"] == 1 and fast.column("poppet.velocity")[-1] == 0.0
 
 
-def test_lsoda_runs_on_the_compiled_rhs_of_a_seat_scene():
-    """solve_ivp's LSODA on the compiled right-hand side (held mode synced per segment) takes the Python RHS's
-    events, and its history agrees to 1e-6 of each peak (observed 1.5e-8)."""
+def test_lsoda_runs_on_the_engine_for_a_seat_scene():
+    """solve_ivp's LSODA on the engine (held mode in the engine's arrays) takes the compiled DOP853's events, and
+    its history agrees to 1e-6 of each peak."""
     data = copy.deepcopy(read_scene_data(CASES / "relief_valve.toml"))
     data["time"]["end"] = 0.1
     sc = scene_from_dict(data, CASES / "relief_valve.toml")
     out = []
-    for compiled in (None, False):
+    for method in ("DOP853", "LSODA"):
         model = build_model(sc)
-        model.options = dataclasses.replace(model.options, method="LSODA", compiled=compiled)
+        model.options = dataclasses.replace(model.options, method=method)
         out.append(run(model))
-    fast, slow = out
-    assert fast.summary["solver"]["path"] == "compiled, solve_ivp" and slow.summary["solver"]["path"] == "python"
-    assert [lb for _, lb in fast.summary["solver"]["event log"]] == [lb for _, lb in slow.summary["solver"]["event log"]]
-    assert fast.summary["contact"]["seat"]["lift-offs"] >= 3
-    assert peak_relative(fast, slow).max() <= 1e-6
+    fast, other = out
+    assert other.summary["solver"]["path"] == "compiled, solve_ivp"
+    assert [lb for _, lb in other.summary["solver"]["event log"]] == [lb for _, lb in fast.summary["solver"]["event log"]]
+    assert other.summary["contact"]["seat"]["lift-offs"] >= 3
+    assert peak_relative(other, fast).max() <= 1e-6

@@ -1,5 +1,4 @@
 """Gas model: CoolProp fits, temperature from internal energy, mixtures, heat loss, tank-test inflators."""
-import math
 
 import numpy as np
 import pytest

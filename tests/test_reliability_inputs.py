@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from tests.reliability import TANK, error_line, run_cli, tank, write
+from tests.reliability import error_line, run_cli, tank, write
 
 FILL_CSV = "time [s],mass flow [kg/s]\n0.0,0.5\n0.05,0.5\n"
 

@@ -50,7 +50,7 @@ def test_max_wall_stops_a_run(capsys, tmp_path):
     assert code == 2 and "the run stopped: " in err[0] and "more than max_wall = 1e-09 s" in err[0]
 
 
-def test_max_wall_on_the_python_path_stops_between_steps(tmp_path):
+def test_max_wall_on_scipys_methods_stops_between_steps(tmp_path):
     m = model(tmp_path, tank(solver={"method": "RK45"}))
     with pytest.raises(RunError, match=r"more than max_wall = 1e-09 s of wall time before t = "):
         run(m, max_wall=1e-9)
@@ -162,15 +162,15 @@ def test_coolprop_species_hold_from_100_to_3000_K(fluid, T):
 
 # ---------------------------------------------------------------------------------------------- pop at t = 0
 
-@pytest.mark.parametrize("compiled", [None, False], ids=["compiled", "python"])
+@pytest.mark.parametrize("integrator", ["compiled", "scipy"])
 @pytest.mark.parametrize("hold", [0.0, 0.01])
-def test_a_pop_vent_armed_above_its_pressure_opens_at_t0(tmp_path, compiled, hold):
+def test_a_pop_vent_armed_above_its_pressure_opens_at_t0(tmp_path, integrator, hold):
     data = tank()
     data["exchange"][0].update(pop_pressure=5e4, pop_hold_time=hold)  # 3 bar in the tank: 2 bar above
     m = model(tmp_path, data)
-    m.options = replace(m.options, compiled=compiled)
+    m.options = replace(m.options, integrator=integrator)
     r = run(m)
-    assert r.trajectory.path == ("compiled" if compiled is None else "python")
+    assert r.trajectory.path == ("compiled" if integrator == "compiled" else "compiled, solve_ivp")
     pops = [(t, label) for t, label in r.trajectory.events if ":pop" in label]
     assert pops == ([(0.0, "vent:pop")] if not hold else [(0.0, "vent:pop"), (pytest.approx(0.01, abs=1e-15),
                                                                                  "vent:pop-hold")])
@@ -181,36 +181,22 @@ def test_a_pop_vent_armed_above_its_pressure_opens_at_t0(tmp_path, compiled, hol
 
 # ---------------------------------------------------------------------------------------------- orifice join
 
-class _WithStops:
-    """The network with extra breakpoints: every output time a step end, a reference without interpolation."""
-
-    def __init__(self, net, extra):
-        self._net, self._extra = net, tuple(extra)
-
-    def __getattr__(self, name):
-        return getattr(self._net, name)
-
-    @property
-    def breakpoints(self):
-        return tuple(self._net.breakpoints) + self._extra
-
-    def compiled_solver(self):
-        return None
-
-
-@pytest.mark.parametrize("compiled", [None, False], ids=["compiled", "python"])
-def test_history_rows_across_the_orifice_join_at_rtol_1e12(tmp_path, compiled):
-    from cavity.integration import integrate
+@pytest.mark.parametrize("integrator", ["compiled", "scipy"])
+def test_history_rows_across_the_orifice_join_at_rtol_1e12(tmp_path, integrator):
+    """Reference without interpolation: scipy's DOP853 on the engine with every output time a stop."""
+    from cavity.integration import SWITCH_NEAR_ZERO_PER_RTOL, integrate
 
     data = tank(time={"end": 2.0, "output_interval": 0.002}, solver={"rtol": 1e-12})
     data["cavity"][0].update(pressure=5e5, volume=0.06)
     data["exchange"][0].update(area=1e-3)
     m = model(tmp_path, data)
     net = m.network
-    traj = integrate(net, net.initial_state(), 0.0, 2.0, replace(m.options, compiled=compiled))
+    traj = integrate(net, net.initial_state(), 0.0, 2.0, replace(m.options, integrator=integrator))
     assert [label for _, label in traj.events] == ["vent:choke", "vent:join", "vent:reversal"]
-    ref = integrate(_WithStops(net, m.output_times[1:-1]), net.initial_state(), 0.0, 2.0,
-                    replace(m.options, compiled=False))
+    y0 = net.initial_state()
+    stepped = net.engine().solve_ivp_system(SWITCH_NEAR_ZERO_PER_RTOL * m.options.rtol)
+    stepped.breakpoints = tuple(stepped.breakpoints) + tuple(m.output_times[1:-1])
+    ref = integrate(stepped, y0, 0.0, 2.0, m.options)
     rows, exact = traj.sample(m.output_times), np.array([ref(t) for t in m.output_times])
     err = np.abs(rows - exact)[:, :2] / np.abs(exact[:, :2]).max(axis=0)
     assert err.max() <= 1e-11  # 2.5e-11 when the join was not a switch; 7.6e-13 with it (compiled path)

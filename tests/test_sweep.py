@@ -276,7 +276,7 @@ sys.exit(main(sys.argv[1:]))
 def test_interrupted_sweep_resumes_with_the_remaining_variants_only(tmp_path):
     from dask.distributed import LocalCluster
 
-    scene = write_case(tmp_path, solver="[solver]\nmethod = \"RK45\"   # the Python path, ~0.4 s a variant\nmax_step = 1e-4")
+    scene = write_case(tmp_path, solver="[solver]\nmethod = \"RK45\"   # scipy's RK45 on the engine\nmax_step = 1e-4")
     vary = ["--vary", "exchange.vent.area=5e-5,1e-4,2e-4,4e-4", "--vary", "cavity.tank.inflator.gen.scale=0.5,1,2"]
     out = tmp_path / "out"
     proc = subprocess.Popen([sys.executable, "-c", CHILD, "sweep", str(scene), *vary, "--out", str(out),

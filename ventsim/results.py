@@ -51,10 +51,7 @@ class Results:
         net, traj = self.raw.model.network, self.raw.trajectory
         i = [c.name for c in net.cavities].index(cavity)
         net.restore(traj.mode_at(t))
-        state = net.states(t, traj(t))[i]
-        if what == "mass" and state.mixture is not None:
-            return float(state.mixture.mass)
-        return float(getattr(state, what))
+        return float(getattr(net.states(t, traj(t))[i], what))
 
     def plot(self, path=None):
         """The history figure (pressure, gauge pressure, temperature, flows, vent area, ... against time):

@@ -71,14 +71,12 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
     contact: object = None  # cases.model.seat_contact.SeatContact or None
     intervals: list = field(init=False, default_factory=list)
     held: bool = field(init=False, default=False)
-    lifting: float = field(init=False, default=0.0)  # SeatModes.lifting_side at the segment's start
     contact_log: list = field(init=False, default_factory=list)  # (t, kind, approach speed, pressure)
 
     def reset(self) -> None:
         super().reset()
-        self.held, self.contact_log, self.lifting = False, [], 0.0
+        self.held, self.contact_log = False, []
         self.intervals = [None] * len(self.exchanges)
-        self._unlock_spline()
         if self.body is not None:
             self.body_state.s, self.body_state.v = 0.0, self.body.motion.initial_velocity
         for j, ga in enumerate(self.areas):
@@ -99,7 +97,7 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
             y[self.body_offset:] = (0.0, self.body.motion.initial_velocity)
             c = self.contact
             if c is not None and c.hard and y[self.body_offset + 1] == 0.0 and c.held_sigma(0.0):
-                self.held = self.reaction(0.0, y) > 0.0
+                self.held = self.body_forces(0.0, y)[2] > 0.0
             elif c is not None and not c.hard and y[self.body_offset + 1] == 0.0:
                 y[self.body_offset] = self.rest_position(y)
         return y
@@ -112,11 +110,6 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
                 pts += list(ga.track.crossings) + list(ga.track.frame_times)
         return tuple(pts)
 
-    def states(self, t, y):
-        if self.body is not None:
-            self.body_state.s, self.body_state.v = y[self.body_offset], y[self.body_offset + 1]
-        return super().states(t, y)
-
     def base_area(self, index, t):
         ga = self.areas[index] if self.areas else None
         if ga is None:
@@ -125,61 +118,10 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
             return ga.track(t)
         return ga.track.area_in(self.intervals[index], self.body_state.s)
 
-    def rhs(self, t, y):
-        dy = super().rhs(t, y)  # states() has set body_state from y
-        if self.body is not None and not self.held:
-            k, m = self.body_offset, self.body.motion
-            force = self.applied_force(y, self.last_states)
-            if self.contact is not None:
-                force += self.contact.force(y[k], y[k + 1])
-            dy[k] = y[k + 1]
-            dy[k + 1] = m.gravity + force / m.mass
-        return dy
-
-    def gas_force(self, y, states) -> float:
-        """Force of the gas on the dynamic body along its axis [N]: (p − p_amb)·dV/ds of the cavity it intrudes
-        into (dV/ds < 0 while intruding) + (p − p_amb)·A of its pressure cavity."""
-        k, f, force = self.body_offset, self.forces, 0.0
-        if self.pushed is not None:
-            force += (states[self.pushed].pressure - self.ambient.pressure) * self.volume_slope(y[k])
-        if f.cavity is not None:
-            force += (states[f.cavity].pressure - self.ambient.pressure) * f.area
-        return force
-
-    def applied_force(self, y, states) -> float:
-        """Force on the dynamic body along its axis from the gas and the spring [N] (not gravity, not contact)."""
-        f = self.forces
-        return self.gas_force(y, states) - f.preload - f.stiffness * y[self.body_offset]
-
-    def events(self):
-        out = super().events()
-        if self.body is not None and not self.held:
-            out += self._turn_event()
-        out += self._area_events() + self._knot_events()
-        if self.contact is not None:
-            out += self._contact_events()
-        return out
-
-    def on_event(self, t, y, label):
-        name, _, kind = label.rpartition(":")
-        if kind == "seat":
-            return self._seat_event(t, y)
-        if kind == "turn" or kind.startswith("knot-"):  # a knot: the next segment holds the piece beyond
-            return y
-        if kind.startswith("kink-"):
-            self._log_touch(t, y)
-            return y
-        if kind.startswith("contact-"):
-            j = next(k for k, ex in enumerate(self.exchanges) if ex.name == name)
-            self.intervals[j] += 1 if kind.endswith("-up") else -1
-            return y
-        return super().on_event(t, y, label)
-
     def snapshot(self):
         return super().snapshot(), tuple(self.intervals), self.held
 
     def restore(self, mode):
-        self._unlock_spline()  # outputs read the volume on the piece holding s
         if mode is not None:
             super().restore(mode[0])
             self.intervals, self.held = list(mode[1]), mode[2]

@@ -1,34 +1,27 @@
-"""The dynamic body against its seat: rest position, reaction, the seat and kink switches, impacts and lift-offs
-(a mixin of :class:`cases.model.scene_network.SceneNetwork`; the contact laws are :mod:`exchange.contact`)."""
+"""The dynamic body against its seat: its rest position, the seat's arrays for the compiled engine and the log of
+impacts and lift-offs (a mixin of :class:`cases.model.scene_network.SceneNetwork`; the contact laws are
+:mod:`exchange.contact_laws`, the seat's switches and what they do :mod:`exchange.compiled_body`)."""
 from __future__ import annotations
 
 import numpy as np
 from scipy.optimize import brentq
 
-from exchange.network_switches import _labelled
+from exchange.point_values import body_values
 
 __all__ = ["SeatModes"]
 
 
 class SeatModes:
-    """Needs ``body``, ``contact``, ``held``, ``contact_log``, ``forces``, ``body_offset``, ``applied_force``,
-    ``states``, ``input_time``."""
+    """Needs ``body``, ``contact``, ``held``, ``contact_log``, ``forces``, ``body_offset``, ``states``,
+    ``engine``."""
 
-    def begin_segment(self, t0, t1, y0=None):
-        super().begin_segment(t0, t1, y0)
-        self.lifting = self.lifting_side(y0) if y0 is not None else 0.0
-
-    def lifting_side(self, y) -> float:
-        """σ when the free body rests on its hard seat (v = 0 exactly, a closed node), else 0.
-
-        Freed at rest (a lift-off, or an impact whose reaction is not compressive), the body can leave the seat
-        along σ only; its acceleration there is zero to round-off, so a probe of the turning-point switch v = 0
-        would take its direction from a rounding error. The switch is watched for the return instead (−σ).
-        """
-        c, k = self.contact, self.body_offset
-        if c is None or not c.hard or self.held or y[k + 1] != 0.0:
-            return 0.0
-        return c.held_sigma(y[k])
+    def body_forces(self, t, y) -> tuple:
+        """(gas force, acceleration, reaction of a hard seat holding it at rest, gas and spring force) of the
+        dynamic body at (t, y) [N, m/s^2, N, N], from the compiled engine (:func:`exchange.point_values.
+        body_values`) in the network's current discrete state."""
+        fast = self.engine()
+        fast.load_discrete_state()
+        return body_values(fast, t, y)
 
     def rest_position(self, y) -> float:
         """Displacement s [m] at which a body at rest on a penalty or softened seat is in static equilibrium.
@@ -44,7 +37,7 @@ class SeatModes:
 
         def net(s):
             y[k] = s
-            return self.applied_force(y, self.states(0.0, y)) + m.mass * m.gravity + c.force(s, 0.0)
+            return self.body_forces(0.0, y)[3] + m.mass * m.gravity + c.force(s, 0.0)
 
         if sigma == 0.0 or net(0.0) * sigma >= 0.0:
             return 0.0
@@ -58,52 +51,9 @@ class SeatModes:
         net(s0)  # leaves the body state at s0
         return s0
 
-    def reaction(self, t, y) -> float:
-        """Hard contact held: the seat's reaction F_c [N] (> 0 compressive) balancing the other forces at rest."""
-        k, m = self.body_offset, self.body.motion
-        net = self.applied_force(y, self.states(self.input_time(t), y)) + m.mass * m.gravity
-        return -self.contact.held_sigma(y[k]) * net
-
     def force_scale(self) -> float:
         m, f = self.body.motion, self.forces
         return max(f.preload + m.mass * abs(m.gravity), 1e-9)
-
-    def _seat_switch(self, t, y):
-        c, k = self.contact, self.body_offset
-        if self.held:
-            return self.reaction(t, y) / self.force_scale()
-        return -float(np.min(c.gaps(y[k])[c.reach])) / c.size
-
-    def _contact_events(self) -> list:
-        c, k = self.contact, self.body_offset
-        if c.hard:
-            out = [_labelled(lambda t, y: self._seat_switch(t, y), f"{c.name}:seat")]
-            if self.held:
-                return out
-        else:
-            out = []
-        for i, s_k in enumerate(c.thresholds()):
-            out.append(_labelled(lambda t, y, s_k=s_k: (y[k] - s_k) / c.size, f"{c.name}:kink-{i}"))
-        return out
-
-    def _seat_event(self, t, y):
-        """Hard contact: lift-off (held -> free) or impact (free -> on the seat with v = 0, held if the reaction is
-        compressive; s is set to the exact touching position, as kinematic contact allows no penetration)."""
-        k, c = self.body_offset, self.contact
-        if self.held:
-            self.held = False
-            self.contact_log.append((t, "lift-off", 0.0, self._pressure(t, y)))
-            return y
-        reach = np.flatnonzero(c.reach)
-        i = reach[int(np.argmin(c.gaps(y[k])[reach]))]
-        approach = -c.sigma[i] * y[k + 1]
-        if approach <= 0.0:  # not approaching: the gap has just opened
-            return y
-        y = np.array(y, dtype=float)
-        y[k], y[k + 1] = -c.g0[i] / c.sigma[i], 0.0
-        self.held = self.reaction(t, y) > 0.0
-        self.contact_log.append((t, "impact", float(approach), self._pressure(t, y)))
-        return y
 
     def lowered_contact(self):
         """The seat contact as arrays for the compiled path (:mod:`exchange.compiled_body`): (1, held, force
@@ -115,8 +65,8 @@ class SeatModes:
         return head, c.table, np.asarray(c.thresholds(), dtype=float)
 
     def log_contact_events(self, events) -> None:
-        """The contact log of a compiled run, from its events: (t, label, state before, state after, mode
-        before) each, as :meth:`_seat_event` and :meth:`_log_touch` log them on the Python path."""
+        """The contact log of a run, from its events: (t, label, state before, state after, mode before) each
+        (:func:`exchange.compiled_body.seat_event`: an impact sets s to the touching position and v to 0)."""
         k, c = self.body_offset, self.contact
         for t, label, before, after, mode in events:
             kind = label.rpartition(":")[2]
@@ -133,7 +83,7 @@ class SeatModes:
 
     def _pressure(self, t, y) -> float:
         f = self.forces.cavity
-        return float(self.states(self.input_time(t), y)[f].pressure) if f is not None else float("nan")
+        return float(self.states(t, y)[f].pressure) if f is not None else float("nan")
 
     def _log_touch(self, t, y):
         """Penalty/softened contact: record first touch and full separation (the kinks where g_min = 0)."""

@@ -14,7 +14,6 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from cavity.volume import mesh_volume, mesh_volumes
-from exchange.lowered_columns import KNOT_SLACK
 
 __all__ = ["Wrapper", "WrappedVolume", "wrapped_volume", "GRID_POINTS"]
 
@@ -66,7 +65,8 @@ class Wrapper:
 class WrappedVolume:
     """Volume of a closed mesh wrapped around bodies, as a C² spline of θ [m^3]; ``theta_of()`` gives θ now.
 
-    ``piece``: the piece the network holds over a segment (:meth:`lock`; None: the piece holding θ)."""
+    The compiled engine evaluates the spline itself (:func:`exchange.compiled_tables.spline_piece_value`), for a
+    θ that is a state on the piece a segment holds (its knots are switches)."""
 
     spline: object
     theta_of: object  # callable t -> θ
@@ -74,55 +74,13 @@ class WrappedVolume:
     lo: float
     hi: float
     breakpoints: tuple = ()
-    piece: int | None = None
 
     def at(self, theta: float) -> float:
-        if self.piece is not None:
-            return self._on_piece(theta)[0]
-        return self._spline_at(theta)
+        return float(self.spline(min(max(theta, self.lo), self.hi)))
 
     def slope(self, theta: float) -> float:
         """dV/dθ (0 outside the sampled range, where nothing touches)."""
-        if self.piece is not None:
-            return self._on_piece(theta)[1]
-        return self._spline_slope(theta)
-
-    def _spline_at(self, theta: float) -> float:
-        return float(self.spline(min(max(theta, self.lo), self.hi)))
-
-    def _spline_slope(self, theta: float) -> float:
         return float(self.spline(theta, 1)) if self.lo <= theta <= self.hi else 0.0
-
-    def lock(self, theta: float, rate: float) -> None:
-        """Hold, until :meth:`unlock`, the piece holding θ nudged by KNOT_SLACK of the span along the motion
-        ``rate``: a θ that is a state (the dynamic body's displacement) then sees one cubic, extended past its
-        knots, whose switches (:meth:`knots_around`) end the segment, so a step never straddles the jump of
-        d³V/dθ³ at a knot (which left airbag_impactor_dynamic converging at low order below rtol 1e-8). Piece
-        −1: below the first knot, n − 1: above the last (held values, slope 0)."""
-        x = self.spline.x
-        nudge = KNOT_SLACK * (x[-1] - x[0]) * float(np.sign(rate))
-        self.piece = int(np.searchsorted(x, theta + nudge, side="right")) - 1
-
-    def unlock(self) -> None:
-        self.piece = None
-
-    def knots_around(self) -> tuple:
-        """(knot below, knot above) the held piece (None where there is none) and the span for switch scales."""
-        x, p = self.spline.x, self.piece
-        return (float(x[p]) if p >= 0 else None, float(x[p + 1]) if p < len(x) - 1 else None,
-                float(x[-1] - x[0]))
-
-    def _on_piece(self, theta: float) -> tuple:
-        """(V, dV/dθ) on the held piece (extended by one piece width; farther, the spline), as
-        :func:`exchange.compiled_tables.spline_piece_value`."""
-        x, p = self.spline.x, self.piece
-        if p < 0 or p >= len(x) - 1:  # held at the end knot
-            return self._spline_at(x[0] if p < 0 else x[-1]), 0.0
-        w = float(x[p + 1] - x[p])
-        if theta < x[p] - w or theta > x[p + 1] + w:  # a trial stage far off: the spline itself
-            return self._spline_at(theta), self._spline_slope(theta)
-        c, d = self.spline.c[:, p], theta - float(x[p])
-        return float(((c[0] * d + c[1]) * d + c[2]) * d + c[3]), float((3.0 * c[0] * d + 2.0 * c[1]) * d + c[2])
 
     def __call__(self, t: float) -> float:
         return self.at(self.theta_of(t))

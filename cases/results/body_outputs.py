@@ -2,7 +2,7 @@
 dynamic body — the primary result of a headform test.
 
 A dynamic body moves along its axis: ``<body>.displacement [m]`` s, ``.velocity [m/s]`` v, ``.acceleration
-[m/s^2]`` dv/dt from the network's right-hand side at (t, y), i.e. the equation of motion
+[m/s^2]`` dv/dt from the compiled right-hand side at (t, y), i.e. the equation of motion
 m·dv/dt = m·g + F_gas + F_spring + F_contact itself, and ``.gas_force [N]`` F_gas = (p − p_amb)·dV/ds of the cavity
 it intrudes into plus (p − p_amb)·A of its pressure cavity. A prescribed rigid body gets s, ṡ and s̈ of its
 displacement table (s̈ = 0 on each piece of a piecewise-linear table) and ``.rotation [deg]`` when it rotates.
@@ -11,21 +11,26 @@ from __future__ import annotations
 
 import numpy as np
 
+from exchange.point_values import body_values, load_mode
+
 __all__ = ["body_columns"]
 
 
 def _dynamic(model, trajectory, times) -> list:
     net = model.network
-    body, k = net.body, net.body_offset
+    fast, body, k = net.compiled_solver(), net.body, net.body_offset
     ys = trajectory.sample(times)
     s, v = ys[:, k].copy(), ys[:, k + 1].copy()
     a, f = np.empty(len(times)), np.empty(len(times))
+    loaded = None
     for r, (t, y) in enumerate(zip(times, ys)):
-        net.restore(trajectory.mode_at(t))
-        net.begin_segment(t, np.inf)
-        states = net.states(net.input_time(t), y)
-        a[r] = net.rhs(t, y)[k + 1]
-        f[r] = net.gas_force(y, states)
+        mode = trajectory.mode_at(t)
+        if mode is not loaded:
+            load_mode(fast, mode)
+            loaded = mode
+        f[r], a[r], _, _ = body_values(fast, t, y)
+    if trajectory.modes:
+        load_mode(fast, trajectory.modes[-1])
     name = body.name
     return [(f"{name}.displacement [m]", s), (f"{name}.velocity [m/s]", v), (f"{name}.acceleration [m/s^2]", a),
             (f"{name}.gas_force [N]", f)]

@@ -7,12 +7,17 @@ speed, not in CPRESS.
 """
 from __future__ import annotations
 
+import math
+import time
+
 import numpy as np
 
+from cavity.integration import SolverError
 from exchange.contact import suggest_mu0
+from exchange.point_values import body_values, load_mode
 from cases.model.seat_contact import STATUS_CODES
 
-__all__ = ["contact_columns", "contact_row", "nodal_history", "contact_summary", "nodal_state"]
+__all__ = ["contact_columns", "contact_rows", "nodal_history", "contact_summary", "nodal_state"]
 
 
 def contact_columns(model) -> list:
@@ -23,35 +28,47 @@ def contact_columns(model) -> list:
             f"{c.name}.max_cpress [Pa]"]
 
 
-def nodal_state(net, t, y):
-    """(CPRESS per node, status per node, seat force on the body [N]) in the network's current mode."""
+def nodal_state(fast, t, y):
+    """(CPRESS per node, status per node, seat force on the body [N]) at (t, y) in the discrete state loaded in
+    ``fast``, the network's :class:`exchange.compiled.CompiledNetwork` (:func:`exchange.point_values.load_mode`)."""
+    net = fast.network
     c, k = net.contact, net.body_offset
-    reaction = net.reaction(t, y) if net.held else 0.0
+    reaction = body_values(fast, t, y)[2] if net.held else 0.0
     p, status = c.nodal(y[k], y[k + 1], reaction)
-    force = reaction * net.contact.held_sigma(y[k]) if net.held else c.force(y[k], y[k + 1])
+    force = reaction * c.held_sigma(y[k]) if net.held else c.force(y[k], y[k + 1])
     return p, status, force
 
 
-def contact_row(model, t, y) -> list:
-    """The contact columns at (t, y); the network's mode must already be restored."""
-    net = model.network
-    if getattr(net, "contact", None) is None:
-        return []
-    p, _, force = nodal_state(net, t, y)
-    k = net.body_offset
-    return [y[k], y[k + 1], force, float(p.max())]
+def _nodal_states(model, traj, times, deadline: float = math.inf):
+    """(t, y, CPRESS, status, seat force) at each of ``times``, each in the mode of its segment; stops with a
+    SolverError once ``time.perf_counter()`` passes ``deadline``."""
+    fast = model.network.compiled_solver()
+    ys, loaded = traj.sample(times), None
+    for r, (t, y) in enumerate(zip(times, ys)):
+        if r % 256 == 255 and time.perf_counter() > deadline:
+            raise SolverError(f"out of wall time (max_wall) writing history rows: {r} of {len(times)} done; "
+                              "raise time.output_interval")
+        mode = traj.mode_at(t)
+        if mode is not loaded:
+            load_mode(fast, mode)
+            loaded = mode
+        yield (t, y) + nodal_state(fast, t, y)
+    load_mode(fast, traj.modes[-1])
+
+
+def contact_rows(model, traj, times, deadline: float = math.inf) -> np.ndarray:
+    """The contact columns (:func:`contact_columns`) at ``times`` [s], (k, 4)."""
+    k = model.network.body_offset
+    return np.array([[y[k], y[k + 1], force, float(p.max())]
+                     for t, y, p, _, force in _nodal_states(model, traj, times, deadline)]).reshape(-1, 4)
 
 
 def nodal_history(model, traj, times) -> dict:
     """CPRESS [Pa] and status codes per seat node at ``times`` (k, n), with the seat's nodes and areas."""
-    net = model.network
-    c = net.contact
-    ys = traj.sample(times)
+    c = model.network.contact
     cp, st = np.zeros((len(times), len(c.nodes))), np.zeros((len(times), len(c.nodes)), dtype=np.uint8)
-    for i, (t, y) in enumerate(zip(times, ys)):
-        net.restore(traj.mode_at(t))
-        cp[i], st[i], _ = nodal_state(net, t, y)
-    net.restore(traj.modes[-1])
+    for i, (_, _, p, status, _) in enumerate(_nodal_states(model, traj, times)):
+        cp[i], st[i] = p, status
     return {"time": np.asarray(times, dtype=float), "cpress": cp, "status": st, "nodes": c.nodes,
             "faces": c.faces, "nodal_area": c.areas,
             "status_codes": np.array(list(STATUS_CODES), dtype="U6")}
@@ -62,18 +79,14 @@ def contact_summary(model, traj) -> dict:
     net = model.network
     c, k = net.contact, net.body_offset
     ts = np.unique(np.concatenate([traj.step_times, [t for t, _ in traj.events], [traj.t_final]]))
-    ys = traj.sample(ts)
     peak, peak_t, peak_node, vd_peak, speed = 0.0, 0.0, -1, 0.0, 0.0
-    for t, y in zip(ts, ys):
-        net.restore(traj.mode_at(t))
-        p, status, _ = nodal_state(net, t, y)
+    for t, y, p, status, _ in _nodal_states(model, traj, ts):
         i = int(np.argmax(p))
         if p[i] > peak:
             peak, peak_t, peak_node = float(p[i]), float(t), i
         vd = p[status == STATUS_CODES["VD"]]
         vd_peak = max(vd_peak, float(np.abs(vd).max()) if vd.size else 0.0)
         speed = max(speed, abs(float(y[k + 1])))
-    net.restore(traj.modes[-1])
     log = list(net.contact_log)
     impacts = [e for e in log if e[1] in ("impact", "touch")]
     lifts = [e for e in log if e[1] in ("lift-off", "separate")]

@@ -67,8 +67,11 @@ def contact_arrays(results, j: int, t: float):
     if contact is None or contact.exchange != j:
         return None, None
     from cases.results.contact_results import nodal_state
+    from exchange.point_values import load_mode
 
-    cpress, status, _ = nodal_state(results.model.network, t, results.trajectory(t))
+    fast = results.model.network.engine()
+    load_mode(fast, results.trajectory.mode_at(t))
+    cpress, status, _ = nodal_state(fast, t, results.trajectory(t))
     return cpress, status
 
 

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
 from pathlib import Path
@@ -15,8 +16,10 @@ FILE_KEYS = ("mesh", "volume_table", "mesh_scale_table", "temperature_table", "l
 """Scene keys whose value names a file: the hash covers the file's bytes, not its name."""
 
 
+@functools.cache
 def version() -> str:
-    """The installed ventsim version (package metadata, from ``pyproject.toml``), or ``"0+unknown"``."""
+    """The installed ventsim version (package metadata, from ``pyproject.toml``), or ``"0+unknown"``; read once a
+    process (the lookup costs ~1 ms, as much as a small scene's whole run)."""
     from importlib.metadata import PackageNotFoundError, version as dist_version
 
     try:

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import pytest
 
-import numpy as np
 
 from cases.decks import deck_scene, import_deck
 from cases.decks.conversions import R_U
