@@ -188,10 +188,8 @@ def network_rhs(t, y, dy, seg_end, rows, breaks, linear, M, tx, ty, ti, ci, cf, 
                 ledger, T_guess, st, n, row, eq, op, iv):
     """d(unknowns)/dt into dy (layout: :mod:`exchange.network`); False if a temperature solve failed.
 
-    ``seg_end``: inputs are read at its left limit when t reaches it (tables are right-continuous at their
-    breakpoints; a step ending on one must see the slope of the piece it integrated over); ``ledger``:
-    offset of the exchanges' ledger entries (each cavity's are ``ci[i, 4]``).
-    """
+    ``seg_end``: inputs are read at its left limit when t reaches it (a step ending on a table break sees the
+    piece it integrated over); ``ledger``: offset of the exchanges' ledger entries (a cavity's: ``ci[i, 4]``)."""
     if t >= seg_end:
         t = np.nextafter(seg_end, -np.inf)
     ok = states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, row)
