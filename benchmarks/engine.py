@@ -12,8 +12,8 @@ Timed is ``cases.run.runner.run`` (the integration and the history read-back; th
 best of ``--repeat`` after a warm-up. "difference": the largest relative difference of the scipy-integrator run
 and of the previous engine's run from the compiled run over every history column (scaled by the column's peak).
 
-``--ladder``: wall time against error instead, per case and integrator, on the rtol ladder 1e-4 … 1e-10; the error
-is the largest relative difference (as above) from a reference run at rtol 1e-12 with steps of at most t_end/4000.
+``--ladder``: wall time against error instead, per case and engine, on the rtol ladder 1e-4 … 1e-10; the error is
+the largest relative difference (as above) from this engine's run at rtol 1e-12 with steps of at most t_end/4000.
 
 Run: python benchmarks/engine.py [--repeat 5] [--cases airbag_impactor airbag_impactor_dynamic] [--ladder]
      [--baseline REV | --no-baseline]
@@ -48,16 +48,16 @@ from cases.model.build import build_model
 from cases.run.library import CASES, HERE
 from cases.run.runner import run
 from cases.scene.files import load_scene
-out = {}
-for name in sys.argv[2:]:
-    model = build_model(load_scene(HERE / CASES[name]))
-    m = replace(model, options=replace(model.options, compiled=False))
-    r = run(m)
-    best = float("inf")
-    for _ in range(int(sys.argv[1])):
-        t0 = time.perf_counter(); r = run(m); best = min(best, time.perf_counter() - t0)
-    out[name] = {"wall": best, "path": r.summary["solver"]["path"], "rhs": r.summary["solver"]["rhs_calls"],
-                 "history": r.history.tolist()}
+repeat, rtols, out = int(sys.argv[1]), json.loads(sys.argv[2]), {}
+for name in sys.argv[3:]:
+    model, out[name] = build_model(load_scene(HERE / CASES[name])), {}
+    for rtol in rtols or [model.options.rtol]:
+        m = replace(model, options=replace(model.options, rtol=rtol, compiled=False))
+        r, best = run(m), float("inf")
+        for _ in range(repeat):
+            t0 = time.perf_counter(); r = run(m); best = min(best, time.perf_counter() - t0)
+        out[name][repr(rtol)] = {"wall": best, "path": r.summary["solver"]["path"],
+                                 "rhs": r.summary["solver"]["rhs_calls"], "history": r.history.tolist()}
 print(json.dumps(out))
 """
 
@@ -83,8 +83,9 @@ def difference(a, b) -> float:
     return worst
 
 
-def previous_engine(rev: str, names, repeat: int) -> dict:
-    """{case: {"wall", "path", "rhs", "history"}} of the previous engine at ``rev`` (see the module docstring)."""
+def previous_engine(rev: str, names, repeat: int, rtols=()) -> dict:
+    """{case: {repr(rtol): {"wall", "path", "rhs", "history"}}} of the previous engine at ``rev`` (see the module
+    docstring), at each of ``rtols`` (none: the scene's own)."""
     with tempfile.TemporaryDirectory(prefix="ventsim-previous-") as tmp:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", "--format=tar", rev], capture_output=True,
                                  check=True).stdout
@@ -92,14 +93,16 @@ def previous_engine(rev: str, names, repeat: int) -> dict:
         tar_path.write_bytes(archive)
         with tarfile.open(tar_path) as tar:
             tar.extractall(tmp, filter="data")
-        out = subprocess.run([sys.executable, "-c", PREVIOUS, str(repeat), *names], cwd=tmp, env={**os.environ, "PYTHONPATH": tmp},
-                             capture_output=True, text=True, check=True).stdout
+        out = subprocess.run([sys.executable, "-c", PREVIOUS, str(repeat), json.dumps(list(rtols)), *names], cwd=tmp,
+                             env={**os.environ, "PYTHONPATH": tmp}, capture_output=True, text=True,
+                             check=True).stdout
     return json.loads(out.strip().splitlines()[-1])
 
 
-def ladder(names, repeat: int) -> None:
-    """Wall time [s] and error against an rtol-1e-12 reference, per case, rtol and integrator."""
-    print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'error':>9} {'scipy [s]':>10} {'error':>9} {'ratio':>7}")
+def ladder(names, repeat: int, previous: dict) -> None:
+    """Wall time [s] and error against an rtol-1e-12 reference, per case, rtol and engine."""
+    print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'error':>9} {'scipy [s]':>10} {'error':>9} "
+          f"{'previous [s]':>12} {'error':>9} {'speed-up':>8}")
     for name in names:
         model = build_model(load_scene(HERE / CASES[name]))
         at = lambda rtol: replace(model, options=replace(model.options, rtol=rtol))  # noqa: E731
@@ -110,8 +113,13 @@ def ladder(names, repeat: int) -> None:
         for rtol in LADDER:
             fast, fres = best(at(rtol), repeat)
             slow, sres = best(at(rtol), repeat, integrator="scipy")
+            prev = previous.get(name, {}).get(repr(rtol))
+            cells = ["-", "-", "-"] if prev is None else [
+                f"{prev['wall']:.4f}", f"{difference(prev['history'], reference.history):.1e}",
+                f"{prev['wall'] / fast:.1f}x"]
             print(f"{name:<26} {rtol:>7.0e} {fast:>12.4f} {difference(fres.history, reference.history):>9.1e} "
-                  f"{slow:>10.4f} {difference(sres.history, reference.history):>9.1e} {slow / fast:>6.1f}x")
+                  f"{slow:>10.4f} {difference(sres.history, reference.history):>9.1e} {cells[0]:>12} {cells[1]:>9} "
+                  f"{cells[2]:>8}")
 
 
 def main():
@@ -122,17 +130,18 @@ def main():
     ap.add_argument("--baseline", default=BASELINE, help="git revision of the previous engine")
     ap.add_argument("--no-baseline", action="store_true", help="skip the previous engine")
     args = ap.parse_args()
-    if args.ladder:
-        return ladder(args.cases, args.repeat)
-    previous = {} if args.no_baseline else previous_engine(args.baseline, args.cases, args.repeat)
+    rtols = LADDER if args.ladder else ()
+    previous = {} if args.no_baseline else previous_engine(args.baseline, args.cases, args.repeat, rtols)
     print(f"previous engine: {'skipped' if args.no_baseline else args.baseline + ' (Python right-hand side)'}")
+    if args.ladder:
+        return ladder(args.cases, args.repeat, previous)
     print(f"{'case':<26} {'rtol':>7} {'compiled [s]':>12} {'scipy [s]':>10} {'previous [s]':>12} {'speed-up':>8} "
           f"{'RHS calls':>10} {'diff scipy':>10} {'diff prev':>10}")
     for name in args.cases:
         model = build_model(load_scene(HERE / CASES[name]))
         fast, res = best(model, args.repeat)
         slow, sres = best(model, args.repeat, integrator="scipy")
-        prev = previous.get(name)
+        prev = next(iter(previous.get(name, {}).values()), None)
         cells = ["-", "-", "-"] if prev is None else [
             f"{prev['wall']:.4f}", f"{prev['wall'] / fast:.1f}x", f"{difference(prev['history'], res.history):.1e}"]
         print(f"{name:<26} {model.options.rtol:>7.0e} {fast:>12.4f} {slow:>10.4f} {cells[0]:>12} {cells[1]:>8} "

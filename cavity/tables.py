@@ -5,13 +5,47 @@ right-hand side. Breakpoints are exposed so the integrator can stop at each kink
 """
 from __future__ import annotations
 
-import bisect
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
-__all__ = ["Table", "TableError"]
+__all__ = ["Table", "TableError", "interpolate", "interpolation_slope"]
+
+
+@njit(cache=True, inline="always")
+def interpolate(x, y, linear, t):
+    """Piecewise-linear y(t) through the rows (x, y) (x strictly increasing), held constant beyond the first and
+    last rows unless ``linear`` (then the end segments extend); the engine and :class:`Table` both call it.
+
+    >>> interpolate(np.array([0.0, 1.0, 3.0]), np.array([0.0, 2.0, 2.0]), False, 0.5)
+    1.0
+    """
+    n = x.size
+    if n == 1:
+        return y[0]
+    if t <= x[0] and not linear:
+        return y[0]
+    if t >= x[n - 1] and not linear:
+        return y[n - 1]
+    i = min(max(np.searchsorted(x, t, side="right") - 1, 0), n - 2)
+    w = (t - x[i]) / (x[i + 1] - x[i])
+    return y[i] + w * (y[i + 1] - y[i])
+
+
+@njit(cache=True, inline="always")
+def interpolation_slope(x, y, linear, t):
+    """dy/dt of :func:`interpolate` at t, taken from the right at a row (0 beyond the ends when held constant).
+
+    >>> interpolation_slope(np.array([0.0, 1.0, 3.0]), np.array([0.0, 2.0, 2.0]), False, 1.0)
+    0.0
+    """
+    n = x.size
+    if n == 1 or (not linear and (t < x[0] or t >= x[n - 1])):
+        return 0.0
+    i = min(max(np.searchsorted(x, t, side="right") - 1, 0), n - 2)
+    return (y[i + 1] - y[i]) / (x[i + 1] - x[i])
 
 
 class TableError(ValueError):
@@ -44,8 +78,8 @@ class Table:
     y: tuple[float, ...]
     name: str = "table"
     extrapolation: str = "constant"
-    _xs: list = field(init=False, repr=False, compare=False)
-    _last: list = field(init=False, repr=False, compare=False)  # [segment index of the last lookup]
+    _xa: np.ndarray = field(init=False, repr=False, compare=False)
+    _ya: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         x = np.asarray(self.x, dtype=float).ravel()
@@ -68,41 +102,15 @@ class Table:
             raise TableError(f"{self.name}: extrapolation must be 'constant' or 'linear', got {self.extrapolation!r}")
         object.__setattr__(self, "x", tuple(float(v) for v in x))
         object.__setattr__(self, "y", tuple(float(v) for v in y))
-        object.__setattr__(self, "_xs", list(self.x))
-        object.__setattr__(self, "_last", [0])
-
-    def _segment(self, x: float) -> int:
-        """Index i of the segment [x_i, x_{i+1}) holding x, clipped to [0, n-2].
-
-        The segment of the previous lookup is tried first: an integrator asks for nearby times.
-        """
-        xs, last = self._xs, self._last
-        i = last[0]
-        if i + 1 < len(xs) and xs[i] <= x < xs[i + 1]:
-            return i
-        i = min(max(bisect.bisect_right(xs, x) - 1, 0), len(xs) - 2)
-        last[0] = i
-        return i
+        object.__setattr__(self, "_xa", x.copy())
+        object.__setattr__(self, "_ya", y.copy())
 
     def __call__(self, x: float) -> float:
-        xs, ys = self.x, self.y
-        if len(xs) == 1:
-            return ys[0]
-        if x <= xs[0] and self.extrapolation == "constant":
-            return ys[0]
-        if x >= xs[-1] and self.extrapolation == "constant":
-            return ys[-1]
-        i = self._segment(x)
-        w = (x - xs[i]) / (xs[i + 1] - xs[i])
-        return ys[i] + w * (ys[i + 1] - ys[i])
+        return float(interpolate(self._xa, self._ya, self.extrapolation == "linear", float(x)))
 
     def slope(self, x: float) -> float:
         """dy/dx at x, taken from the right at a breakpoint (0 beyond the ends when held constant)."""
-        xs, ys = self.x, self.y
-        if len(xs) == 1 or (self.extrapolation == "constant" and (x < xs[0] or x >= xs[-1])):
-            return 0.0
-        i = self._segment(x)
-        return (ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i])
+        return float(interpolation_slope(self._xa, self._ya, self.extrapolation == "linear", float(x)))
 
     def integral(self, a: float, b: float) -> float:
         """Exact integral of the table from a to b (trapezoids on the pieces)."""

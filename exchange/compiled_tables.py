@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from cavity.tables import interpolate, interpolation_slope
 from cavity.tolerances import R_UNIVERSAL as R_U
 
 from .lowered_columns import UNLOCKED
@@ -16,29 +17,16 @@ P, TT, RHO, RG, GAM, H, V, DV, MASS, FR = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9  # column
 
 @njit(cache=True, inline="always")
 def table_value(tx, ty, ti, k, x):
-    """:meth:`cavity.tables.Table.__call__` of table k at x (piecewise linear, constant or linear ends)."""
-    s, n, lin = ti[k, 0], ti[k, 1], ti[k, 2]
-    if n == 1:
-        return ty[s]
-    if x <= tx[s] and lin == 0:
-        return ty[s]
-    if x >= tx[s + n - 1] and lin == 0:
-        return ty[s + n - 1]
-    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
-    i = min(max(i, 0), n - 2) + s
-    w = (x - tx[i]) / (tx[i + 1] - tx[i])
-    return ty[i] + w * (ty[i + 1] - ty[i])
+    """Table k at x: :func:`cavity.tables.interpolate` on its rows (``ti[k]``: first row, rows, linear ends)."""
+    s, n = ti[k, 0], ti[k, 1]
+    return interpolate(tx[s:s + n], ty[s:s + n], ti[k, 2] != 0, x)
 
 
 @njit(cache=True, inline="always")
 def table_slope(tx, ty, ti, k, x):
-    """:meth:`cavity.tables.Table.slope` of table k at x (from the right at a breakpoint)."""
-    s, n, lin = ti[k, 0], ti[k, 1], ti[k, 2]
-    if n == 1 or (lin == 0 and (x < tx[s] or x >= tx[s + n - 1])):
-        return 0.0
-    i = np.searchsorted(tx[s:s + n], x, side="right") - 1
-    i = min(max(i, 0), n - 2) + s
-    return (ty[i + 1] - ty[i]) / (tx[i + 1] - tx[i])
+    """dy/dx of table k at x: :func:`cavity.tables.interpolation_slope` on its rows."""
+    s, n = ti[k, 0], ti[k, 1]
+    return interpolation_slope(tx[s:s + n], ty[s:s + n], ti[k, 2] != 0, x)
 
 
 @njit(cache=True, inline="always")
