@@ -12,8 +12,9 @@ Timed is ``cases.run.runner.run`` (the integration and the history read-back; th
 best of ``--repeat`` after a warm-up. "difference": the largest relative difference of the scipy-integrator run
 and of the previous engine's run from the compiled run over every history column (scaled by the column's peak).
 
-``--ladder``: wall time against error instead, per case and engine, on the rtol ladder 1e-4 … 1e-10; the error is
-the largest relative difference (as above) from this engine's run at rtol 1e-12 with steps of at most t_end/4000.
+``--ladder``: wall time against error instead, per case and engine, on the rtol ladder 1e-4 … 1e-10 (absolute
+tolerances scaled with rtol, as a scene's defaults are); the error is the largest relative difference (as above)
+from this engine's run at rtol 1e-12 with steps of at most t_end/4000.
 
 Run: python benchmarks/engine.py [--repeat 5] [--cases airbag_impactor airbag_impactor_dynamic] [--ladder]
      [--baseline REV | --no-baseline]
@@ -52,7 +53,8 @@ repeat, rtols, out = int(sys.argv[1]), json.loads(sys.argv[2]), {}
 for name in sys.argv[3:]:
     model, out[name] = build_model(load_scene(HERE / CASES[name])), {}
     for rtol in rtols or [model.options.rtol]:
-        m = replace(model, options=replace(model.options, rtol=rtol, compiled=False))
+        o = model.options
+        m = replace(model, options=replace(o, rtol=rtol, atol=o.atol * rtol / o.rtol, compiled=False))
         r, best = run(m), float("inf")
         for _ in range(repeat):
             t0 = time.perf_counter(); r = run(m); best = min(best, time.perf_counter() - t0)
@@ -105,7 +107,8 @@ def ladder(names, repeat: int, previous: dict) -> None:
           f"{'previous [s]':>12} {'error':>9} {'speed-up':>8}")
     for name in names:
         model = build_model(load_scene(HERE / CASES[name]))
-        at = lambda rtol: replace(model, options=replace(model.options, rtol=rtol))  # noqa: E731
+        o = model.options  # absolute tolerances scale with rtol, as a scene's defaults do (atol = rtol/100 × scale)
+        at = lambda rtol: replace(model, options=replace(o, rtol=rtol, atol=o.atol * rtol / o.rtol))  # noqa: E731
         # rtol 1e-12 alone is not a safe reference: DOP853's error estimate can vanish by accident on one step,
         # which is then accepted ~1e4 times less accurate than asked (seen on bag_unfold); steps of at most
         # t_end/4000 make such a step short enough not to matter

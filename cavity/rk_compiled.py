@@ -20,7 +20,7 @@ from scipy.integrate._ivp import dop853_coefficients as _d
 
 __all__ = ["A", "B", "C", "E3", "E5", "D", "A_EXTRA", "C_EXTRA", "N_STAGES", "DenseSteps", "error_norm",
            "initial_h0", "initial_step", "dense_F", "dense_eval", "step_factor", "SAFETY", "MIN_FACTOR",
-           "MAX_FACTOR"]
+           "MAX_FACTOR", "segment_of", "dense_state", "dense_samples"]
 
 N_STAGES = _d.N_STAGES  # 12
 A = np.ascontiguousarray(_d.A[:N_STAGES, :N_STAGES])
@@ -138,6 +138,49 @@ def dense_eval(rec, n, t, out):
             acc += rec[base + (6 - k) * n + i]
             acc *= x if k % 2 == 0 else 1.0 - x
         out[i] = acc + rec[RECORD + i]
+
+
+@njit(cache=True, inline="always")
+def segment_of(segs, t):
+    """Index of the segment holding t [s]: the last whose start ``segs[:, 2]`` is ≤ t, clipped to the table
+    (``np.searchsorted(starts, t, side="right") − 1`` as ``Trajectory.mode_at``)."""
+    lo, hi = 0, segs.shape[0]
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if segs[mid, 2] <= t:
+            lo = mid + 1
+        else:
+            hi = mid
+    return min(max(lo - 1, 0), segs.shape[0] - 1)
+
+
+@njit(cache=True, inline="always")
+def dense_state(recs, segs, i, t, y):
+    """State at t [s] on segment i into y (n,): the step of :meth:`DenseSteps.__call__` (``searchsorted(ts, t,
+    side="left") − 1`` on ts = [t_min, step ends...], clipped), then its dense output."""
+    first, end = int(segs[i, 0]), int(segs[i, 1])
+    lo, hi = first, end
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if recs[mid, 2] < t:
+            lo = mid + 1
+        else:
+            hi = mid
+    k = (1 if segs[i, 2] < t else 0) + (lo - first) - 1
+    k = min(max(k, 0), end - first - 1)
+    dense_eval(recs[first + k], y.size, t, y)
+
+
+@njit(cache=True)
+def dense_samples(recs, segs, times):
+    """(states (len(times), n), segment index per time) of a compiled run's records at ``times`` [s] (sorted or
+    not): the segment of each time (:func:`segment_of`), then its step's dense output (:func:`dense_state`)."""
+    n_y = (recs.shape[1] - RECORD) // 8
+    ys, idx = np.empty((times.size, n_y)), np.empty(times.size, np.int64)
+    for r in range(times.size):
+        idx[r] = segment_of(segs, times[r])
+        dense_state(recs, segs, idx[r], times[r], ys[r])
+    return ys, idx
 
 
 class DenseSteps:

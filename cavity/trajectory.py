@@ -2,6 +2,7 @@
 solver's statistics and the event log (what :func:`cavity.integration.integrate` returns)."""
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field
 
@@ -23,7 +24,8 @@ class Trajectory:
     last_event: tuple | None = None  # (label, time, direction) of the switch that ended the last segment
     deadline: float = math.inf  # time.perf_counter() after which the run stops (SolverOptions.max_wall)
     stalls: int = 0  # events in a row at the same time
-    path: str = "python"  # which integrator ran: "python" (solve_ivp) or "compiled" (cavity.rk_compiled)
+    path: str = "python"  # which integrator ran: "compiled" (cavity.rk_compiled), "compiled, solve_ivp" (scipy's
+    #: methods on the engine's kernels) or "python" (solve_ivp on a plain Python system)
     #: compiled path: (step records, segment table) of the compiled solver, read back by exchange.compiled_history
     compiled_records: tuple | None = field(default=None, repr=False)
 
@@ -36,14 +38,23 @@ class Trajectory:
         return self.modes[int(self.segment_index(t))]
 
     def segment_index(self, t):
-        """The segment holding t (a time or an array); the segments' starts are kept while none is added."""
+        """The segment holding t (a time or an array): the last starting at or before t, clipped."""
         if len(self.__dict__.get("_starts", ())) != len(self.segments):
             self._starts = np.array([s.t_min for s in self.segments])
+            self._start_list = self._starts.tolist()
+        if np.ndim(t) == 0:
+            return min(max(bisect.bisect_right(self._start_list, t) - 1, 0), len(self.segments) - 1)
         return np.clip(np.searchsorted(self._starts, t, side="right") - 1, 0, len(self.segments) - 1)
 
     def sample(self, times) -> np.ndarray:
-        """States at ``times`` (sorted), shape (len(times), n)."""
+        """States at ``times`` (sorted), shape (len(times), n): from the compiled DOP853's records in one compiled
+        call (:func:`cavity.rk_compiled.dense_samples`), else segment by segment."""
         times = np.asarray(times, dtype=float)
+        if self.compiled_records is not None and len(self.compiled_records[1]) == len(self.segments):
+            from .rk_compiled import dense_samples
+
+            recs, segs = self.compiled_records
+            return dense_samples(recs, segs, np.ascontiguousarray(times.reshape(-1)))[0]
         idx = self.segment_index(times)
         out = np.empty((times.size, self.segments[0](self.segments[0].t_min).size))
         for i in np.unique(idx):

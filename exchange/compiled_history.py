@@ -1,81 +1,36 @@
 """The history of a run, read back in one numba call from its states at the output times.
 
-The states come from the compiled DOP853's step records (:func:`dense_samples`: the segment of each time, then its
-step's 7th-order interpolant) or from solve_ivp's dense output (``Trajectory.sample``); :func:`history_rows` then
-evaluates the cavity states, each exchange's flow and area at every output time with the kernels the right-hand
-side uses (:func:`exchange.compiled_rhs.states`, :func:`~exchange.compiled_rhs.exchange_flow`,
+The states come from ``Trajectory.sample`` (the compiled DOP853's step records in one compiled call,
+:func:`cavity.rk_compiled.dense_samples`, or solve_ivp's dense output); :func:`history_rows` then evaluates the
+cavity states, each exchange's flow and area at every output time with the kernels the right-hand side uses
+(:func:`exchange.compiled_rhs.states`, :func:`~exchange.compiled_rhs.exchange_flow`,
 :func:`~exchange.compiled_rhs.exchange_area`): no physics is written twice.
 
-- the segment of time t: the last segment starting at or before t (right limit at a switch), :func:`segment_of`,
-  as ``Trajectory.mode_at``; the step of that segment: the left step at a step end, :func:`dense_state`;
+- the segment of time t: the last segment starting at or before t (right limit at a switch),
+  ``Trajectory.segment_index``;
 - the discrete state of a segment: of its mode the equalised flags (``mode[3]``), the popped flags (``mode[0]``)
   and the dynamic body's area intervals act, passed per segment as ``eqs``, ``ops`` (0 while a pop vent is
   shut) and ``ivs``; a DELTA LEAKAGE AREA's area at activation is set once per run (``ef[:, 9]``) and acts only
   while its exchange is open;
-- the row: the columns of :func:`cases.run.runner.history_columns`, time [s], then per cavity pressure [Pa],
-  temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area [m^2],
-  then the unknowns asked for (a real-gas wall's temperatures [K]).
+- the row: the columns of :func:`cases.results.readback.history_columns`, time [s], then per cavity pressure
+  [Pa], temperature [K], mass [kg], volume [m^3], then per exchange mass flow [kg/s] (up → down) and flow area
+  [m^2], then the unknowns asked for (a real-gas wall's temperatures [K]).
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-from cavity.rk_compiled import RECORD, dense_eval
 
 from .compiled_rhs import MASS, P, TT, V, exchange_area, exchange_flow, states
 from .lowered_columns import UNLOCKED
 
-__all__ = ["segment_of", "dense_state", "dense_samples", "history_rows", "row_width", "equalised_per_segment",
-           "opened_per_segment", "samples", "history"]
+__all__ = ["history_rows", "row_width", "equalised_per_segment", "opened_per_segment", "samples", "history"]
 
 
 def row_width(n_cavities: int, n_exchanges: int) -> int:
     """Columns of a history row: time, 4 per cavity, 2 per exchange."""
     return 1 + 4 * n_cavities + 2 * n_exchanges
-
-
-@njit(cache=True, inline="always")
-def segment_of(segs, t):
-    """Index of the segment holding t [s]: the last whose start ``segs[:, 2]`` is ≤ t, clipped to the table
-    (``np.searchsorted(starts, t, side="right") − 1`` as ``Trajectory.mode_at``)."""
-    lo, hi = 0, segs.shape[0]
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if segs[mid, 2] <= t:
-            lo = mid + 1
-        else:
-            hi = mid
-    return min(max(lo - 1, 0), segs.shape[0] - 1)
-
-
-@njit(cache=True, inline="always")
-def dense_state(recs, segs, i, t, y):
-    """State at t [s] on segment i into y (n,): the step of ``DenseSteps.__call__`` (``searchsorted(ts, t,
-    side="left") − 1`` on ts = [t_min, step ends...], clipped), then its dense output."""
-    first, end = int(segs[i, 0]), int(segs[i, 1])
-    lo, hi = first, end
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if recs[mid, 2] < t:
-            lo = mid + 1
-        else:
-            hi = mid
-    k = (1 if segs[i, 2] < t else 0) + (lo - first) - 1
-    k = min(max(k, 0), end - first - 1)
-    dense_eval(recs[first + k], y.size, t, y)
-
-
-@njit(cache=True)
-def dense_samples(recs, segs, times):
-    """(states (len(times), n), segment index per time) of a compiled run's records at ``times`` [s] (sorted or
-    not): the segment of each time (:func:`segment_of`), then its step's dense output (:func:`dense_state`)."""
-    n_y = (recs.shape[1] - RECORD) // 8
-    ys, idx = np.empty((times.size, n_y)), np.empty(times.size, np.int64)
-    for r in range(times.size):
-        idx[r] = segment_of(segs, times[r])
-        dense_state(recs, segs, idx[r], times[r], ys[r])
-    return ys, idx
 
 
 @njit(cache=True)
@@ -155,12 +110,9 @@ def opened_per_segment(modes, pop_vents) -> np.ndarray:
 
 
 def samples(traj, times) -> tuple[np.ndarray, np.ndarray]:
-    """(states (len(times), n), segment index per time) of a trajectory at ``times`` [s]: from the compiled
-    DOP853's records in one call, else from solve_ivp's dense output (``Trajectory.sample``)."""
+    """(states (len(times), n), segment index per time) of a trajectory at ``times`` [s] (``Trajectory.sample``:
+    from the compiled DOP853's records in one call, else from solve_ivp's dense output)."""
     times = np.ascontiguousarray(times, dtype=float)
-    recs = getattr(traj, "compiled_records", None)
-    if recs is not None:
-        return dense_samples(recs[0], recs[1], times)
     return traj.sample(times), np.asarray(traj.segment_index(times), dtype=np.int64).reshape(-1)
 
 

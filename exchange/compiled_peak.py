@@ -16,7 +16,7 @@ from numba import njit
 
 from cavity.rk_compiled import RECORD
 
-from .compiled_history import dense_state, segment_of
+from cavity.rk_compiled import dense_state, segment_of
 from .compiled_rhs import P, states
 from .lowered_columns import UNLOCKED
 

@@ -59,13 +59,15 @@ def pressures(model, traj, times):
 
 
 def pointwise_history(model, traj, times) -> np.ndarray:
-    """History rows built one by one: ``Trajectory.sample``, each segment's mode loaded, the point kernels."""
+    """History rows built one by one: each segment's dense output (``DenseSteps`` or scipy's), its mode loaded,
+    the point kernels."""
     net = model.network
     fast, rows = net.engine(), []
     walls = [k + len(c.initial_masses) + 1 for c, k in zip(net.cavities, net.offsets) if getattr(c, "wall", None)]
     walls += [k + len(c.initial_masses) + c.wall.layers for c, k in zip(net.cavities, net.offsets)
               if getattr(c, "wall", None) is not None and c.wall.layers > 1]
-    for t, y in zip(times, traj.sample(times)):
+    for t in times:
+        y = traj.segments[traj.segment_index(t)](t)  # the segment's own dense output, not the compiled sampler
         load_mode(fast, traj.mode_at(t))
         row = [t]
         for s in cavity_states(fast, t, y):
