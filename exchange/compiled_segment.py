@@ -17,11 +17,18 @@ __all__ = ["begin_segment", "directions"]
 
 @njit(cache=True)
 def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
-    """(watched switch indices, their directions) at a segment start (``cavity.integration._directions``)."""
+    """(watched switch indices, their directions) at a segment start: away from each switch's current sign; the
+    switch that has just fired for the opposite crossing; a switch within ``near`` of zero against its trend along
+    the flow (not at all if it does not move). After an event, ``near`` grows to 4 times the fired switch's value
+    at the restart: the state there is integrated afresh to the event time located on the step's dense output, and
+    a low-order dense output (Radau's) leaves the fired switch up to ~1e3·rtol off zero; a twin that crossed at the
+    same instant (two identical vents) has the same value and would otherwise fire again at once, in turn."""
     nsw, n = kinds.size, y.size
     vals, pvals = np.empty(nsw), np.empty(nsw)
     wq, wd = np.empty(nsw, np.int64), np.empty(nsw)
     switches(M, kinds, js, t, y, seg_end, vals)
+    if last_q >= 0 and t == last_t:
+        near = max(near, 4.0 * abs(vals[last_q]))
     probed, nw = False, 0
     for q in range(nsw):
         if not watched(M, kinds[q], js[q]):
