@@ -15,20 +15,28 @@ from .compiled_rhs import base_area
 __all__ = ["begin_segment", "directions"]
 
 
+@njit(cache=True, inline="always")
+def _kink(kind):
+    """A switch at a kink of the right-hand side in the state (choke, reversal, orifice join, a table row): its
+    event changes neither the state nor the function."""
+    return kind == 0 or kind == 1 or kind == 7 or kind == 11 or kind == 12
+
+
 @njit(cache=True)
 def directions(M, kinds, js, t, y, seg_end, last_q, last_t, last_dir, near):
     """(watched switch indices, their directions) at a segment start: away from each switch's current sign; the
     switch that has just fired for the opposite crossing; a switch within ``near`` of zero against its trend along
-    the flow (not at all if it does not move). After an event, ``near`` grows to 4 times the fired switch's value
-    at the restart: the state there is integrated afresh to the event time located on the step's dense output, and
-    a low-order dense output (Radau's) leaves the fired switch up to ~1e3·rtol off zero; a twin that crossed at the
-    same instant (two identical vents) has the same value and would otherwise fire again at once, in turn."""
+    the flow (not at all if it does not move). After a kink's switch fired (:func:`_kink`: a function of the state
+    that the event leaves as it is), ``near`` grows to 4 times its value at the restart (at most 1e3·``near``): the
+    state there is integrated afresh to the event time located on the step's dense output, and a low-order dense
+    output (Radau's) leaves the fired switch up to ~1e3·rtol off zero; a twin that crossed at the same instant (two
+    identical vents) has the same value and would otherwise fire again at once, in turn."""
     nsw, n = kinds.size, y.size
     vals, pvals = np.empty(nsw), np.empty(nsw)
     wq, wd = np.empty(nsw, np.int64), np.empty(nsw)
     switches(M, kinds, js, t, y, seg_end, vals)
-    if last_q >= 0 and t == last_t:
-        near = max(near, 4.0 * abs(vals[last_q]))
+    if last_q >= 0 and t == last_t and _kink(kinds[last_q]):
+        near = max(near, min(4.0 * abs(vals[last_q]), 1e3 * near))
     probed, nw = False, 0
     for q in range(nsw):
         if not watched(M, kinds[q], js[q]):
