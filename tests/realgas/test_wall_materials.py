@@ -8,6 +8,7 @@ from scipy.integrate import solve_ivp
 from cavity.wall import Wall
 from cavity.wall_materials import WallMaterial, series_resistance
 from tests.closed_forms import two_layer_slab_mean
+from tests.realgas.test_realgas_scenes import SCENE
 
 ALUMINIUM = dict(conductivity=237.0, density=2700.0, heat_capacity=900.0)
 CFRP = dict(conductivity=0.5, density=1360.0, heat_capacity=1020.0)
@@ -88,19 +89,7 @@ def test_a_bad_material_is_refused():
         WallMaterial(0.005, 0.0, 2700.0, 900.0, 2, "liner")
 
 
-WALL = """
-[time]
-end = 1.0
-[ambient]
-gas = {N2 = 1.0}
-[[cavity]]
-name = "tank"
-fluid = "real_gas"
-gas = {N2 = 1.0}
-pressure = 1.0e7
-temperature = 300.0
-volume = 0.01
-energy = "wall"
+WALL = SCENE + """energy = "wall"
 wall_inner_area = 0.3
 wall_outer_area = 0.4
 wall_outer_h = 5.0
