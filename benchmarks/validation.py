@@ -1,18 +1,24 @@
-"""Vessel discharge and filling experiments: ventsim (real gas, lumped wall) and HydDown against the measurements.
+"""Vessel discharge and filling experiments: ventsim (real gas, vessel walls) and HydDown against the measurements.
 
 Cases (cases/validation/, set-ups and measurements as collected by HydDown, MIT, cases/validation/LICENSE.HydDown):
 N2 150 bar discharge (Haque et al. 1992, I1; p, gas T top and bottom, wall T inner and outer), air 7.9 bar
-discharge (p, mean gas T) and air filling from 3.7 kPa (no measured history: ventsim against HydDown only).
+discharge (p, mean gas T), air filling from 3.7 kPa (no measured history), H2 100 bar discharge and filling
+(Woodfield et al.; p, gas T high and low; the filling also at its measured mass flow), H2 138 bar discharges
+(Byrnes et al. runs 7 and 8; p, mean gas and wall T), He 700 bar from a Type IV tank (KIT; p, mean gas T), H2
+700 bar from a Type IV tank at a prescribed flow (GasTeF; gas T low, mean, high, outer wall T), methane/ethane
+120 bar (Haque et al.; p, mean gas T, inner wall T) and H2 filling of a Type III tank (Dicken and Mérida; no
+measured history in the collection).
 
 For each: ventsim's error against the measurement (pressure [bar] and gas temperature [K], RMS and max over the
-measured points, the model interpolated linearly onto them; the N2 gas temperature against the mean of its two
-probes; the wall against the mean of the inner and outer probes), the minimum gas temperature computed and
-measured, and CPU and wall times: ventsim build + run (best of 10, CoolProp's fluid loaded once beforehand; on
-the compiled engine, CoolProp's calls hosted, and on the Python right-hand side, the previous engine) and
-HydDown's HydDown(setup) + run() (best of 5, in its own interpreter); on a shared machine the CPU times are the
-steadier figure. HydDown runs when an interpreter that imports it is
-found (HYDDOWN_PYTHON, /work/venv-hyddown/bin/python, or this one); its rows are skipped otherwise. Plots of
-measured against computed p and T (and wall T) go to OUT/validation.png (default out/benchmarks).
+measured points, the model interpolated linearly onto them; the gas temperature against the mean of its probes;
+the wall against the mean of its probes, compared with the model's lumped wall, inner or outer layer as the probe
+sits), the extreme gas temperature (the minimum of a discharge, the maximum of a filling) computed and measured
+(probe mean, and the extreme probe), and CPU and wall times: ventsim build + run (best of 10, CoolProp's fluid
+loaded once beforehand; the compiled engine, CoolProp's calls hosted) and HydDown's HydDown(setup) + run() (best
+of 5, in its own interpreter); on a shared machine the CPU times are the steadier figure. HydDown runs when an
+interpreter that imports it is found (HYDDOWN_PYTHON, /work/venv-hyddown/bin/python, or this one); its rows are
+skipped otherwise. Plots of measured against computed p and T (and wall T) go to OUT/validation.png (default
+out/benchmarks).
 
 Requires: numpy, matplotlib; HydDown optional (a separate venv: python3 -m venv /work/venv-hyddown &&
 /work/venv-hyddown/bin/pip install hyddown).
@@ -30,6 +36,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -41,10 +48,33 @@ from cases.run.runner import run  # noqa: E402
 from cases.scene.files import load_scene  # noqa: E402
 
 HERE = ROOT / "cases" / "validation"
-#: scene, HydDown set-up, stem of the measured CSVs (None: no measurement), gas and wall probes
-CASES = (("n2_150bar_discharge", "N2_Exp_I1.yml", "n2_150bar", ("gas_high", "gas_low"), ("wall_inner", "wall_outer")),
-         ("air_790kPa_discharge", "Air_790kPa_21mm.yml", "air_790kPa", ("gas_mean",), ()),
-         ("air_3_7kPa_filling", "Air_3-7kPa_21mm.yml", None, (), ()))
+
+
+class Case(NamedTuple):
+    """A validation scene, its HydDown set-up, the stem of its measured CSVs (None: no measurement), its gas and
+    wall probes, and the model's wall column the wall probes are compared with."""
+
+    scene: str
+    setup: str
+    stem: str | None
+    gas: tuple = ()
+    wall: tuple = ()
+    wall_column: str = "wall_temperature"
+
+
+CASES = (Case("n2_150bar_discharge", "N2_Exp_I1.yml", "n2_150bar", ("gas_high", "gas_low"), ("wall_inner", "wall_outer")),
+         Case("air_790kPa_discharge", "Air_790kPa_21mm.yml", "air_790kPa", ("gas_mean",)),
+         Case("air_3_7kPa_filling", "Air_3-7kPa_21mm.yml", None),
+         Case("h2_100bar_discharge", "dischargeH2_woodfield.yml", "h2_100bar", ("gas_high", "gas_low")),
+         Case("h2_100bar_filling", "fillingH2_woodfield.yml", "h2_100bar_filling", ("gas_high", "gas_low")),
+         Case("h2_100bar_filling_measured_flow", "", "h2_100bar_filling", ("gas_high", "gas_low")),
+         Case("h2_138bar_discharge_run7", "Byrnes_run7.yml", "h2_138bar_run7", ("gas_mean",), ("wall_mean",)),
+         Case("h2_138bar_discharge_run8", "Byrnes_run8.yml", "h2_138bar_run8", ("gas_mean",), ("wall_mean",)),
+         Case("he_700bar_typeIV_discharge", "kit_composite.yml", "he_700bar", ("gas_mean",)),
+         Case("h2_700bar_typeIV_discharge", "demiguel.yml", "h2_700bar", ("gas_mean",), ("wall_outer",),
+              "outer_wall_temperature"),
+         Case("ng_120bar_discharge", "NG_Exp.yml", "ng_120bar", ("gas_mean",), ("wall_inner",)),
+         Case("h2_typeIII_filling", "dickens_typeIII.yml", None))
 
 
 def _csv(name: str) -> tuple:
@@ -60,18 +90,20 @@ def _probe_mean(stem: str, probes: tuple) -> tuple | None:
     return t, np.mean([v] + [np.interp(t, *_csv(f"{stem}_{p}")) for p in probes[1:]], axis=0)
 
 
-def measured(stem, gas, wall) -> dict:
-    if stem is None:
+def measured(case: Case) -> dict:
+    if case.stem is None:
         return {}
-    t, p = _csv(f"{stem}_pressure")
-    out = {"p": (t, p * 1e5), "T": _probe_mean(stem, gas), "T_wall": _probe_mean(stem, wall)}
-    out["T probes"] = {name: _csv(f"{stem}_{name}") for name in gas}
+    out = {"T": _probe_mean(case.stem, case.gas), "T_wall": _probe_mean(case.stem, case.wall)}
+    if (HERE / "data" / f"{case.stem}_pressure.csv").exists():
+        t, p = _csv(f"{case.stem}_pressure")
+        out["p"] = (t, p * 1e5)
+    out["T probes"] = {name: _csv(f"{case.stem}_{name}") for name in case.gas}
     return {k: v for k, v in out.items() if v is not None}
 
 
-def run_ventsim(scene: str, repeats: int = 10) -> dict:
-    """ventsim's run of ``scene`` (best of ``repeats``)."""
-    path = HERE / f"{scene}.toml"
+def run_ventsim(case: Case, repeats: int = 10) -> dict:
+    """ventsim's run of ``case`` (best of ``repeats``)."""
+    path = HERE / f"{case.scene}.toml"
     build_model(load_scene(path))  # loads CoolProp's fluid and fits the species once
     wall = cpu = float("inf")
     for _ in range(repeats):
@@ -79,7 +111,7 @@ def run_ventsim(scene: str, repeats: int = 10) -> dict:
         r = run(build_model(load_scene(path)))
         wall, cpu = min(wall, time.perf_counter() - start), min(cpu, time.process_time() - start_cpu)
     return {"time": r.column("time"), "p": r.column("vessel.pressure"), "T": r.column("vessel.temperature"),
-            "T_wall": r.column("vessel.wall_temperature"), "wall time [s]": wall, "cpu time [s]": cpu,
+            "T_wall": r.column(f"vessel.{case.wall_column}"), "wall time [s]": wall, "cpu time [s]": cpu,
             "rhs": r.summary["solver"]["rhs_calls"], "path": r.summary["solver"]["path"]}
 
 
@@ -105,14 +137,26 @@ def errors(model: dict, meas: tuple, key: str, scale: float = 1.0) -> tuple:
     return float(np.sqrt(np.mean(e ** 2))), float(np.max(np.abs(e)))
 
 
+def extremes(model: dict, meas: dict) -> tuple:
+    """(computed, measured probe mean, measured extreme probe) of the gas temperature: minima of a discharge (the
+    model cools below its start), maxima of a filling."""
+    T = model["T"]
+    cools = np.min(T) < T[0] - 1e-9
+    pick = np.min if cools else np.max
+    if "T" not in meas:
+        return float(pick(T)), np.nan, np.nan
+    probes = [v for _, v in meas["T probes"].values()]
+    return float(pick(T)), float(pick(meas["T"][1])), float(pick([pick(v) for v in probes]))
+
+
 def rows_of(name: str, label: str, model: dict, meas: dict) -> str:
     p = errors(model, meas["p"], "p", 1e5) if "p" in meas else (np.nan, np.nan)
     T = errors(model, meas["T"], "T") if "T" in meas else (np.nan, np.nan)
-    Tmin = float(np.min(model["T"])) if np.min(model["T"]) < model["T"][0] - 1e-9 else float(np.max(model["T"]))
-    Tmeas = float(np.min(meas["T"][1])) if "T" in meas else np.nan
+    T_model, T_mean, T_probe = extremes(model, meas)
     wall = errors(model, meas["T_wall"], "T_wall") if "T_wall" in meas else (np.nan, np.nan)
-    return (f"| {name} | {label} | {p[0]:.3f} | {p[1]:.3f} | {T[0]:.2f} | {T[1]:.2f} | {Tmin:.2f} | {Tmeas:.2f} | "
-            f"{wall[0]:.2f} | {model['cpu time [s]']:.3f} | {model['wall time [s]']:.3f} |")
+    return (f"| {name} | {label} | {p[0]:.3f} | {p[1]:.3f} | {T[0]:.2f} | {T[1]:.2f} | {T_model:.2f} | "
+            f"{T_mean:.2f}; {T_probe:.2f} | {wall[0]:.2f} | {model['cpu time [s]']:.3f} | "
+            f"{model['wall time [s]']:.3f} |")
 
 
 def plot(results: list, out: Path) -> Path:
@@ -121,9 +165,10 @@ def plot(results: list, out: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(2, len(results), figsize=(5 * len(results), 7), squeeze=False)
-    for col, (name, meas, ours, theirs) in enumerate(results):
-        ax_p, ax_T = axes[0, col], axes[1, col]
+    cols = (len(results) + 1) // 2
+    fig, axes = plt.subplots(4, cols, figsize=(4.5 * cols, 13), squeeze=False)
+    for k, (name, meas, ours, theirs) in enumerate(results):
+        ax_p, ax_T = axes[2 * (k // cols), k % cols], axes[2 * (k // cols) + 1, k % cols]
         for model, style, who in ((ours, "-", "ventsim"), (theirs, "--", "HydDown")):
             if model is None:
                 continue
@@ -136,7 +181,8 @@ def plot(results: list, out: Path) -> Path:
             ax_T.plot(t, v, "o", ms=4, mfc="none", label=f"measured {probe}")
         if "T_wall" in meas:
             ax_T.plot(*meas["T_wall"], "ks", ms=3, label="measured wall (mean)")
-        ax_p.set(title=name, ylabel="pressure [bar]")
+        ax_p.set_title(name, fontsize=8)
+        ax_p.set(ylabel="pressure [bar]")
         ax_T.set(xlabel="time [s]", ylabel="temperature [K]")
         ax_p.legend(fontsize=7)
         ax_T.legend(fontsize=7)
@@ -155,20 +201,20 @@ def main(argv=None) -> int:
     exe = hyddown_python()
     print(f"HydDown: {exe or 'not found (its rows are skipped)'}\n")
     print("| case | code | p RMS [bar] | p max [bar] | T RMS [K] | T max [K] | T min (max) computed [K] | "
-          "T min measured [K] | wall T RMS [K] | CPU time [s] | wall time [s] |")
+          "T min (max) measured [K]: probe mean; extreme probe | wall T RMS [K] | CPU time [s] | wall time [s] |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     results, speed = [], []
-    for scene, setup, stem, gas, wall in CASES:
-        meas = measured(stem, gas, wall)
-        ours = run_ventsim(scene)
-        print(rows_of(scene, f"ventsim ({ours['rhs']} RHS, {ours['path']})", ours, meas))
-        theirs = run_hyddown(exe, setup) if exe else None
+    for case in CASES:
+        meas = measured(case)
+        ours = run_ventsim(case)
+        print(rows_of(case.scene, f"ventsim ({ours['rhs']} RHS, {ours['path']})", ours, meas), flush=True)
+        theirs = run_hyddown(exe, case.setup) if exe and case.setup else None
         if theirs is not None:
-            print(rows_of(scene, "HydDown", theirs, meas))
+            print(rows_of(case.scene, "HydDown", theirs, meas))
             dev = np.max(np.abs(np.interp(theirs["time"], ours["time"], ours["p"]) - theirs["p"])) / 1e5
-            speed.append((scene, theirs["cpu time [s]"] / ours["cpu time [s]"],
+            speed.append((case.scene, theirs["cpu time [s]"] / ours["cpu time [s]"],
                           theirs["wall time [s]"] / ours["wall time [s]"], dev))
-        results.append((scene, meas, ours, theirs))
+        results.append((case.scene, meas, ours, theirs))
     for scene, cpu, wall, dev in speed:
         print(f"\n{scene}: HydDown / ventsim CPU time {cpu:.1f}x, wall time {wall:.1f}x; largest "
               f"|p_ventsim - p_HydDown| {dev:.3f} bar", end="")

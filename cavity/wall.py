@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass
 
 from .wall_layers import layer_capacities, layer_conductances, layer_temperature_rates, surface_conductance
+from .wall_materials import layered_capacities, layered_conductances
 
 __all__ = ["Wall", "natural_convection_nusselt", "horizontal_cylinder_nusselt", "forced_inflow_nusselt", "rayleigh_number",
            "natural_convection_coefficient", "GRAVITY", "MORGAN_HORIZONTAL_CYLINDER"]
@@ -206,6 +207,10 @@ class Wall:
         (:mod:`cavity.wall_layers`), the first layer facing the gas, the last the ambient.
     conductivity, thickness : float
         k [W/(m K)] and L [m] of a layered wall (> 0 when ``layers`` > 1).
+    materials : tuple of cavity.wall_materials.WallMaterial
+        A wall of several materials, inner to outer (a liner and its shells), each in its own cells
+        (:mod:`cavity.wall_materials`); then ``mass``, ``heat_capacity``, ``layers``, ``conductivity`` (the inner
+        material's) and ``thickness`` (the whole wall's) are derived from them and the areas, and may be given as 0.
     """
 
     mass: float
@@ -222,8 +227,12 @@ class Wall:
     layers: int = 1
     conductivity: float = 0.0
     thickness: float = 0.0
+    materials: tuple = ()
 
     def __post_init__(self):
+        if self.materials:
+            self._layer_materials()
+            return
         if self.layers < 1 or (self.layers > 1 and not (self.conductivity > 0.0 and self.thickness > 0.0)):
             raise ValueError(f"a wall of {self.layers} layers needs layers >= 1, and conductivity > 0 and "
                              f"thickness > 0 when layered (got {self.conductivity!r}, {self.thickness!r})")
@@ -232,6 +241,23 @@ class Wall:
             layer_capacities(self.thermal_mass, self.inner_area, self.outer_area, self.layers),
             layer_conductances(self.conductivity, self.thickness, self.inner_area, self.outer_area, self.layers),
             surface_conductance(self.outer_h, self.outer_area, self.conductivity, half), half))
+
+    def _layer_materials(self) -> None:
+        """The cells of a wall of several materials, and the wall's derived mass, heat capacity, layers, inner
+        conductivity and thickness."""
+        first, last = self.materials[0], self.materials[-1]
+        capacities = layered_capacities(self.materials, self.inner_area, self.outer_area)
+        conductances = layered_conductances(self.materials, self.inner_area, self.outer_area)
+        specific = [m.heat_capacity for m in self.materials for _ in range(m.layers)]
+        mass = sum(C / c for C, c in zip(capacities, specific))
+        for name, value in (("mass", mass), ("heat_capacity", sum(capacities) / mass), ("layers", len(capacities)),
+                            ("conductivity", first.conductivity),
+                            ("thickness", sum(m.thickness for m in self.materials))):
+            object.__setattr__(self, name, value)
+        half_out = 0.5 * last.thickness / last.layers
+        object.__setattr__(self, "_layering", (
+            capacities, conductances, surface_conductance(self.outer_h, self.outer_area, last.conductivity, half_out),
+            0.5 * first.thickness / first.layers))
 
     @property
     def thermal_mass(self) -> float:

@@ -17,6 +17,7 @@ from exchange.realgas_orifice import RealGasOrificeLaw
 
 from cases.scene.errors import SceneError
 from cases.scene.realgas import coolprop_name
+from cases.scene.walls import wall_materials
 
 __all__ = ["real_gas_cavity", "real_gas_laws", "real_gas_tank_test"]
 
@@ -59,7 +60,7 @@ def real_gas_cavity(scene, gas: GasModel, i: int, volume, inflators: tuple) -> R
         wall = Wall(c.wall_mass, c.wall_heat_capacity, c.wall_inner_area, c.wall_outer_area or c.wall_inner_area,
                     c.wall_inner_h, c.wall_outer_h, c.wall_length, c.wall_temperature or c.temperature,
                     scene.ambient.temperature, c.wall_orientation, c.wall_jet_diameter, c.wall_layers,
-                    c.wall_conductivity, c.wall_thickness)
+                    c.wall_conductivity, c.wall_thickness, wall_materials(c))
     return RealGasCavity(c.name, volume, tuple(masses), c.temperature, c.energy, c.added_volume, c.minimum_volume,
                          c.heat_transfer_coefficient, c.heat_transfer_area, scene.ambient.temperature, inflators,
                          fluid=fluid, species_index=k, wall=wall)

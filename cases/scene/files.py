@@ -19,6 +19,7 @@ from cases.scene.contact import ContactSpec
 from cases.scene.validate import register_specs, validate_scene
 from cases.scene.values import composition as _composition, cp_coefficients, names_list as _names, vector as _vector
 from cases.scene.tables_io import read_text, table_or_constant
+from cases.scene.walls import WallMaterialSpec
 
 __all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
            "ExchangeSpec", "ContactSpec", "LimitsSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
@@ -150,7 +151,8 @@ class CavitySpec:
     wall_outer_area: float = key("wall: outer area (0: wall_inner_area)", "m^2", default=0.0, check="nonnegative")
     wall_inner_h: float = key("wall: inner heat transfer coefficient (0: natural convection Nu = C·Ra^n over "
                               "wall_length, docs/realgas.md)", "W/(m^2 K)", default=0.0, check="nonnegative")
-    wall_outer_h: float = key("wall: outer heat transfer coefficient to the ambient temperature", "W/(m^2 K)",
+    wall_outer_h: float = key("wall: outer heat transfer coefficient to the ambient temperature (0: insulated)",
+                              "W/(m^2 K)",
                               default=0.0, check="nonnegative")
     wall_length: float = key("wall: length of the natural-convection correlation (vessel length if vertical, "
                              "diameter if horizontal)", "m", default=0.0, check="nonnegative")
@@ -170,6 +172,10 @@ class CavitySpec:
     wall_conductivity: float = key("wall: thermal conductivity of the wall material (wall_layers > 1)", "W/(m K)",
                                    default=0.0, check="nonnegative")
     wall_thickness: float = key("wall: thickness (wall_layers > 1)", "m", default=0.0, check="nonnegative")
+    wall_materials: tuple = key("wall: the materials through its thickness, inner to outer, each with its own "
+                                "cells ([[cavity.wall_materials]]: a liner and a composite shell; replaces "
+                                "wall_mass, wall_heat_capacity, wall_layers, wall_conductivity, wall_thickness)",
+                                default=())
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -352,7 +358,8 @@ def scene_from_dict(data: dict, path) -> Scene:
     inflator_nested = {"gas": composition, "temperature": table("temperature [K]"),
                        "mass_flow": table("mass flow [kg/s]"), "tank_pressure": table("tank pressure [Pa]"),
                        "inflator_pressure": table("inflator pressure [Pa]")}
-    cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested), "wrapped_by": names_list}
+    cavity_nested = {"gas": composition, "inflator": many(InflatorSpec, inflator_nested), "wrapped_by": names_list,
+                     "wall_materials": many(WallMaterialSpec)}
     scene = parse(Scene, data, path, "", nested={
         "time": lambda v, w: parse(TimeSpec, v, path, w),
         "solver": lambda v, w: parse(SolverSpec, v, path, w),
@@ -375,4 +382,4 @@ def scene_from_dict(data: dict, path) -> Scene:
 
 register_specs(Scene=Scene, TimeSpec=TimeSpec, SolverSpec=SolverSpec, AmbientSpec=AmbientSpec, LimitsSpec=LimitsSpec,
                SpeciesSpec=SpeciesSpec, CavitySpec=CavitySpec, InflatorSpec=InflatorSpec, ExchangeSpec=ExchangeSpec,
-               BodySpec=BodySpec, ContactSpec=ContactSpec)
+               BodySpec=BodySpec, ContactSpec=ContactSpec, WallMaterialSpec=WallMaterialSpec)

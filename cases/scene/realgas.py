@@ -8,10 +8,9 @@ from cavity.species import BUILTIN_COOLPROP_NAMES
 
 from cases.scene.errors import SceneError
 from cases.scene.schema import suggest
+from cases.scene.walls import check_wall
 
 __all__ = ["check_real_gas", "coolprop_name"]
-
-_WALL_KEYS = ("wall_mass", "wall_heat_capacity", "wall_inner_area", "wall_outer_h")
 
 
 def coolprop_name(scene, species: str) -> str:
@@ -97,14 +96,7 @@ def check_real_gas(scene) -> None:
             raise SceneError(scene.path, f"{where}.energy", f"a real_gas cavity is one of "
                              f"{', '.join(map(repr, REAL_GAS_ENERGY_MODELS))}, got {c.energy!r}")
         if c.energy == "wall":
-            missing = [k for k in _WALL_KEYS if not getattr(c, k)]
-            if missing or not (c.wall_inner_h or c.wall_length):
-                raise SceneError(scene.path, f"{where}.{(missing or ['wall_length'])[0]}",
-                                 "required (> 0) for energy = 'wall' (wall_length unless wall_inner_h is given)")
-            for k in ("wall_conductivity", "wall_thickness"):
-                if c.wall_layers > 1 and not getattr(c, k):
-                    raise SceneError(scene.path, f"{where}.{k}", f"required (> 0) with wall_layers = {c.wall_layers} "
-                                     "(1-D conduction through the wall); or set wall_layers = 1 (lumped)")
+            check_wall(scene, c, where)
         for j, inf in enumerate(c.inflator):
             if not _same_gas(scene, (inf.gas, inf.gas_by_mole), (c.gas, c.gas_by_mole)):
                 raise SceneError(scene.path, f"{where}.inflator[{j}].gas", f"a real_gas cavity takes only its own "

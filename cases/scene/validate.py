@@ -105,6 +105,8 @@ def _spec(obj, cls, path, where) -> None:
     check_fields(obj, path, where)
     for i, inf in enumerate(getattr(obj, "inflator", ()) if cls.__name__ == "CavitySpec" else ()):
         _spec(inf, SPECS["InflatorSpec"], path, f"{where}.inflator[{i}]")
+    for i, m in enumerate(getattr(obj, "wall_materials", ()) if cls.__name__ == "CavitySpec" else ()):
+        _spec(m, SPECS["WallMaterialSpec"], path, f"{where}.wall_materials[{i}]")
 
 
 def _values(scene, path) -> None:

@@ -33,6 +33,12 @@ def layered_run(tmp_path_factory):
     return run(build_model(load_scene(path)))
 
 
+@pytest.fixture(scope="module")
+def composite_run():
+    """The KIT helium discharge from a Type IV tank: an HDPE liner and a composite shell, 8 cells each."""
+    return run(build_model(load_scene(VALIDATION / "he_700bar_typeIV_discharge.toml")))
+
+
 def _books(r):
     """(gas imbalance, wall imbalance, scale) [J] of the one cavity of a run with a wall."""
     net = r.model.network
@@ -52,10 +58,11 @@ def _books(r):
     return gas, wall, scale, wall_scale, heat
 
 
-@pytest.mark.parametrize("which", ["n2_run", "filling_run", "layered_run"])
+@pytest.mark.parametrize("which", ["n2_run", "filling_run", "layered_run", "composite_run"])
 def test_energy_books_close_with_a_wall(which, request):
     """Gas: ΔU = inflow − outflow − work − heat to the wall; wall: Σ C_j ΔT_j = heat in − heat to ambient;
-    both to 1e-12 of the energies involved, the wall's own m_w·c_w·T_w included (its unknown is the absolute
+    both to 1e-12 of the energies involved (lumped, one conducting material, two materials), the wall's own
+    m_w·c_w·T_w included (its unknown is the absolute
     temperature, so that is the size of its round-off); the ledger integrals are advanced by the same steps."""
     r = request.getfixturevalue(which)
     gas, wall, scale, wall_scale, heat = _books(r)
