@@ -4,15 +4,15 @@ import io
 import logging
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
 
-import numpy as np
 import pytest
 
 import ventsim
 from cases import cli
-from cavity.integration import SolverOptions, integrate
+from cavity.integration import integrate
 from exchange.compiled import _announce_compilation
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -46,28 +46,18 @@ class Terminal(io.StringIO):
         return True
 
 
-class Decay:
-    """dy/dt = -y, with breakpoints: the integrator's minimal system."""
-
-    breakpoints = (0.25, 0.5)
-
-    def rhs(self, t, y):
-        return -y
-
-    def events(self):
-        return []
-
-    def describe(self, t, y):
-        return ""
-
-
 @pytest.mark.parametrize("tty", [True, False])
 def test_the_integration_bar_ends_at_100_percent_on_a_terminal_and_is_silent_otherwise(monkeypatch, tty):
     stream = Terminal() if tty else io.StringIO()
     monkeypatch.setattr(sys, "stderr", stream)
     monkeypatch.setattr("cavity.progress.DELAY", 0.0)  # show the bar at once
-    traj = integrate(Decay(), np.array([1.0]), 0.0, 1.0, SolverOptions(method="RK45", rtol=1e-6), progress=True)
-    assert traj(1.0)[0] == pytest.approx(np.exp(-1.0), rel=1e-4)
+    from cases.model.build import build_model
+    from cases.scene.files import load_scene
+
+    model = build_model(load_scene(ROOT / "cases" / "verification" / "blowdown_choked.toml"))
+    net = model.network
+    traj = integrate(net, net.initial_state(), 0.0, 0.5, replace(model.options, method="RK45"), progress=True)
+    assert traj.path == "compiled, solve_ivp" and traj.t_final == 0.5
     text = stream.getvalue()
     if tty:
         assert text.splitlines()[-1].split("\r")[-1].startswith("ventsim: 100.0%")
