@@ -34,6 +34,9 @@ class Activation:
         Multiplier on the area against time [-].
     delta_area : bool
         Use the current leakage area minus the area at activation (Abaqus DELTA LEAKAGE AREA).
+    close_pressure : float or None
+        Absolute pressure of the downstream cavity [Pa] at which the exchange closes for good (a filling stopped at
+        its target pressure; None: never).
     """
 
     open_time: float = 0.0
@@ -42,6 +45,7 @@ class Activation:
     hold_time: float = 0.0
     amplitude: object = None
     delta_area: bool = False
+    close_pressure: float | None = None
 
     @property
     def breakpoints(self) -> tuple:
@@ -60,7 +64,8 @@ def activated_area(area, t, open_time, close_time, shut, amplitude, area_at_acti
 
     with :math:`a(t)` the amplitude and :math:`A_{act}` the area when the exchange opened (Abaqus DELTA LEAKAGE
     AREA; 0 without it, when the clip changes nothing). A pop vent is shut until its pop condition has been met
-    (Radioss ΔPdef held for ΔtPdef, LS-DYNA PPOP); it then stays open.
+    (Radioss ΔPdef held for ΔtPdef, LS-DYNA PPOP); it then stays open; an exchange with a close pressure is shut
+    for good once its downstream cavity has reached it.
 
     Parameters
     ----------
@@ -71,7 +76,7 @@ def activated_area(area, t, open_time, close_time, shut, amplitude, area_at_acti
     open_time, close_time : float
         The window [s] (−inf, inf: none).
     shut : bool
-        A pop vent whose pop condition has not been met.
+        A pop vent whose pop condition has not been met, or an exchange closed at its close pressure.
     amplitude : float
         a(t) [-] (1 without an amplitude table).
     area_at_activation : float

@@ -98,21 +98,23 @@ class CompiledNetwork:
 
     def arm(self, t0: float, y0) -> list:
         """From the network's discrete state, every pop vent already above its pop pressure at t0 starts its hold
-        (or pops) now, as if its pressure had just crossed it; the network takes the new state. Returns their
-        switch labels (for the event log)."""
+        (or pops) now, as if its pressure had just crossed it, and every exchange whose downstream cavity is
+        already at its close pressure closes; the network takes the new state. Returns their switch labels (for
+        the event log)."""
         from .compiled_modes import on_event
         from .compiled_solver import switches
 
         self.load_discrete_state()
         M, labels, value = self.model, [], np.empty(1)
         y0 = np.ascontiguousarray(y0, dtype=float)
-        for q in np.flatnonzero(self.kinds == 4):
+        for q in np.flatnonzero((self.kinds == 4) | (self.kinds == 17)):
             j = int(self.exchanges[q])
-            if M[21][j] == 1 or not math.isnan(M[22][j]):
+            if M[21][j] != (1 if self.kinds[q] == 17 else 0) or not math.isnan(M[22][j]):
                 continue
             switches(M, self.kinds[q:q + 1], self.exchanges[q:q + 1], float(t0), y0, math.inf, value)
-            if value[0] > 0.0:
-                on_event(M, 4, j, float(t0), y0.copy(), math.inf)
+            reached = value[0] >= 0.0 if self.kinds[q] == 17 else value[0] > 0.0
+            if reached:
+                on_event(M, int(self.kinds[q]), j, float(t0), y0.copy(), math.inf)
                 labels.append(self.labels[q])
         if labels:
             self.network.restore(self.current_mode(t0))
@@ -135,11 +137,11 @@ class CompiledNetwork:
         return NO_TEMPERATURE if error is None else f"{type(error).__name__}: {error}"
 
     def load_discrete_state(self) -> None:
-        """Copy the network's discrete state into the model arrays: equalised and open flags, hold starts, the
-        area intervals of the dynamic body, whether hard contact holds it (compiled_body), the piece of a volume
-        spline of its displacement the segment holds, and each pop vent's
-        area at activation (DELTA LEAKAGE AREA; for one opened by time on an area that follows the dynamic body,
-        NaN until it opens)."""
+        """Copy the network's discrete state into the model arrays: equalised flags, open flags (0 a pop vent not
+        popped, 1 open, 2 closed at its close pressure), hold starts, the area intervals of the dynamic body,
+        whether hard contact holds it (compiled_body), no volume-spline piece held, and each pop vent's area at
+        activation (DELTA LEAKAGE AREA; for one opened by time on an area that follows the dynamic body, NaN until
+        it opens)."""
         model, net = self.model, self.network
         eq, op, hold = model[20], model[21], model[22]
         model[23][:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
@@ -148,7 +150,7 @@ class CompiledNetwork:
         for j in range(len(net.exchanges)):
             pop_vent = model[12][j, 6] == 1
             eq[j] = net.equalised[j]
-            op[j] = 0 if pop_vent and not net.popped[j] else 1
+            op[j] = 2 if net.closed[j] else 0 if pop_vent and not net.popped[j] else 1
             hold[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
             if pop_vent:
                 model[13][j, 9] = net.area_at_activation[j] or 0.0
@@ -157,16 +159,18 @@ class CompiledNetwork:
 
     def _mode(self, row) -> tuple:
         """The network's snapshot (``Network.snapshot()``) from a row of the solver's segment table: code
-        (bits: equalised exchanges), then per exchange popped, then per exchange the hold start (NaN: none)."""
+        (bits: equalised exchanges), then per exchange its open flag (:meth:`load_discrete_state`), then per
+        exchange the hold start (NaN: none), the dynamic body's area intervals, held on its seat."""
         ne, code = len(self.network.exchanges), int(row[4])
-        popped = tuple(bool(p) for p in row[5:5 + ne])
+        popped = tuple(bool(self.model[12][j, 6] == 1 and row[5 + j] >= 1) for j in range(ne))
+        closed = tuple(bool(row[5 + j] == 2) for j in range(ne))
         holding = tuple(None if math.isnan(h) else h for h in row[5 + ne:5 + 2 * ne])
         intervals = tuple(int(i) for i in row[5 + 2 * ne:5 + 3 * ne])
         held = bool(row[5 + 3 * ne])
-        key = (code, popped, holding, intervals, row[2], held)
+        key = (code, popped, closed, holding, intervals, row[2], held)
         if key not in self._modes:
             areas = self._areas_at_activation(popped, row[2])
-            mode = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)))
+            mode = (popped, holding, areas, tuple(bool(code >> j & 1) for j in range(ne)), closed)
             wrap = getattr(self.network, "wrap_mode", None)
             self._modes[key] = wrap(mode, intervals, held) if wrap is not None else mode
         return self._modes[key]
@@ -302,9 +306,9 @@ def _exchanges(net, tables, host):
                    host if hosted else law_table, cd_table, cd_variable))
         ef.append((ex.area, cd, act.open_time if window else 0.0, act.close_time if window else math.inf,
                    act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, p1, p2, switch_scale,
-                   area_at_activation(net, j)))
+                   area_at_activation(net, j), (act.close_pressure or 0.0) if window else 0.0))
         ei[-1] += (int(window and act.delta_area),)
-    return np.array(ei, dtype=np.int64).reshape(-1, 15), np.array(ef, dtype=float).reshape(-1, 10)
+    return np.array(ei, dtype=np.int64).reshape(-1, 15), np.array(ef, dtype=float).reshape(-1, 11)
 
 
 def _body(net) -> np.ndarray:

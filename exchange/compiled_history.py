@@ -99,12 +99,14 @@ def intervals_per_segment(modes, n_exchanges: int) -> np.ndarray:
 
 def opened_per_segment(modes, pop_vents) -> np.ndarray:
     """(segments, exchanges) int: 0 where exchange j is a pop vent (``pop_vents[j]``) not popped (``mode[0]``)
-    during the segment, else 1."""
+    during the segment, 2 where it has closed at its close pressure (``mode[4]``), else 1."""
     ops = np.ones((len(modes), len(pop_vents)), dtype=np.int64)
     for i, mode in enumerate(modes):
         mode = _network_mode(mode)
         for j, pop in enumerate(pop_vents):
-            if pop and not (mode is not None and mode[0][j]):
+            if mode is not None and len(mode) > 4 and mode[4][j]:
+                ops[i, j] = 2
+            elif pop and not (mode is not None and mode[0][j]):
                 ops[i, j] = 0
     return ops
 

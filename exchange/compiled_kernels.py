@@ -38,6 +38,8 @@ def switches(M, kinds, js, t, y, seg_end, vals):
         j = js[q]
         if kinds[q] == 11 or kinds[q] == 12:
             vals[q] = kink_value(kinds[q], j, ei, tx, ti, st, amb)
+        elif kinds[q] == 17:
+            vals[q] = switch_value(17, j, ci, ei, ef, st, amb)
         elif kinds[q] >= 8:  # the dynamic body and its seat
             vals[q] = body_switch(M, kinds[q], j, y)
         elif kinds[q] == 6:  # 1 (never watched) when not holding

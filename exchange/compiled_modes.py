@@ -2,13 +2,15 @@
 state recorded per segment (the network's ``snapshot``, :meth:`exchange.compiled.CompiledNetwork.current_mode`).
 The state lives in the
 model tuple of :class:`exchange.compiled.CompiledNetwork`: ``M[20]`` equalised flags, ``M[21]`` 0 while a pop vent
-has not popped, ``M[22]`` the start of its hold [s] (NaN: not holding); ``M[12]`` and ``M[13]`` are the exchanges'
+has not popped (2 once an exchange closed at its close pressure, else 1), ``M[22]`` the start of its hold [s]
+(NaN: not holding); ``M[12]`` and ``M[13]`` are the exchanges'
 ``ei`` and ``ef`` (:mod:`exchange.compiled_rhs`); a pop sets the vent's area at activation ``ef[j, 9]``. Switch
 kinds: 0 choke, 1 one-way reversal, 2 equalise, 3 release, 4 pop, 5 pop-drop, 6 pop-hold, 7 orifice join, 8/9 the
 dynamic body reaching the crossing above/below its area interval ``M[23][j]``, 10 its turning point, 11/12 a
 row of a law's Cd table of pressure / leakage table (:mod:`exchange.law_kinks`), 13 the body's seat (hard
 contact: lift-off and impact), 14 a kink of its seat's force (:mod:`exchange.compiled_body`), 15/16 the knot
-above/below the piece of the pushed cavity's volume spline the segment holds (``M[7][i, 9]``).
+above/below the piece of the pushed cavity's volume spline the segment holds (``M[7][i, 9]``), 17 the downstream
+cavity reaching an exchange's close pressure ``ef[j, 10]``.
 """
 from __future__ import annotations
 
@@ -27,8 +29,11 @@ __all__ = ["watched", "on_event", "record_segment", "body_switch", "rederive_int
 @njit(cache=True)
 def watched(M, kind, j):
     """Switch (kind, exchange j) is watched in the current discrete state: equalise while
-    open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped."""
+    open, release while equalised, pop while armed, pop-drop and pop-hold while holding, none once popped; the
+    close pressure while open."""
     eq, op, hold = M[20], M[21], M[22]
+    if kind == 17:  # the close pressure: while open
+        return op[j] == 1
     if kind == 11 or kind == 12:  # a law's kinks (exchange.law_kinks): always watched
         return True
     if kind == 8:  # a crossing above the body's area interval exists
@@ -54,7 +59,9 @@ def on_event(M, kind, j, t, y, seg_end):
     """What switch (kind, j) does when it fires at t: equalise holds the exchange closed, release opens it; a pop crossing starts the
     hold (or pops at once without a hold time), a drop re-arms, the hold's end pops; a seat switch may change the
     body's state ``y`` in place (:func:`exchange.compiled_body.seat_event`)."""
-    if kind == 15 or kind == 16:
+    if kind == 17:  # the downstream cavity reached the close pressure: shut for good
+        M[21][j] = 2
+    elif kind == 15 or kind == 16:
         pass  # a knot only ends the segment: the next one holds the piece beyond (lock_pieces)
     elif kind >= 13:
         seat_event(M, kind, t, y, seg_end)
@@ -76,13 +83,14 @@ def on_event(M, kind, j, t, y, seg_end):
 @njit(cache=True)
 def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
     """Row nseg of the segment table: first record, end record, t_min, t_max, mode code (bits: equalised), then
-    per exchange popped (pop vents only), then per exchange the hold start [s] (NaN: none), then per exchange the
-    dynamic body's area interval, then 1 while the body is held on its seat."""
+    per exchange its open flag (0 a pop vent not popped, 1 open, 2 closed at its close pressure), then per exchange
+    the hold start [s] (NaN: none), then per exchange the dynamic body's area interval, then 1 while the body is
+    held on its seat."""
     ei, op, hold = M[12], M[21], M[22]
     ne = op.size
     segs[nseg, 0], segs[nseg, 1], segs[nseg, 2], segs[nseg, 3], segs[nseg, 4] = first, end, t_min, t_max, mode
     for j in range(ne):
-        segs[nseg, 5 + j] = 1.0 if ei[j, 6] == 1 and op[j] == 1 else 0.0
+        segs[nseg, 5 + j] = op[j]
         segs[nseg, 5 + ne + j] = hold[j]
         segs[nseg, 5 + 2 * ne + j] = M[23][j]
     segs[nseg, 5 + 3 * ne] = M[25][1]

@@ -32,10 +32,11 @@ Array layout (built by :func:`exchange.compiled.lower`):
   geometric area step table (−1: the constant ``ef[:, 0]``), scale table of that area (−1: none), area kind
   (0 constant, 1 steps of time, 2 steps of the dynamic body's displacement, 3 a surface on a vertex trajectory),
   law table (leakage table rows or flux amplitude, −1: none; a hosted law's host id), Cd table (−1: the constant
-  ``ef[:, 1]``), Cd abscissa (0 upstream pressure, 1 time), DELTA LEAKAGE AREA (1); ``ef`` (ne, 10): area [m^2], Cd
+  ``ef[:, 1]``), Cd abscissa (0 upstream pressure, 1 time), DELTA LEAKAGE AREA (1); ``ef`` (ne, 11): area [m^2], Cd
   [-], open time [s], close time [s], pop pressure [Pa], hold time [s], law parameters (fabric: open fraction;
   Graefe: FLC, FAC; linear resistance: conductance; leakage table: volume flag, held-last flag; flux: flux per area,
-  volume flag; bulk viscosity: c_v, c_h; a hosted law: 1 if prescribed), switch scale, area at activation;
+  volume flag; bulk viscosity: c_v, c_h; a hosted law: 1 if prescribed), switch scale, area at activation,
+  close pressure [Pa] of the downstream cavity (0: none);
   ``eq`` (ne,) int: 1 while held closed (equalised, :data:`exchange.equalised.EQUALISED_BELOW`); ``op`` (ne,)
   int: 0 while a pop vent has not popped (else 1); ``hold`` (ne,): the time its hold started [s] (NaN: not
   holding);
@@ -120,7 +121,8 @@ def states(rows, breaks, linear, M, tx, ty, ti, ci, cf, t, y, T_guess, st, n, ro
 @njit(cache=True, inline="always")
 def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
     """Flow area [m^2] of exchange j at t (:func:`exchange.activation.activated_area` of its base area):
-    ``ei[j, 4]`` 1 with a time window ``ef[j, 2:4]``; ``op[j]`` 0 while a pop vent has not popped; ``ei[j, 3]``
+    ``ei[j, 4]`` 1 with a time window ``ef[j, 2:4]``; ``op[j]`` 0 while a pop vent has not popped, 2 once closed at
+    its close pressure (shut either way); ``ei[j, 3]``
     its amplitude table (−1: none); ``iv[j]`` the interval of the dynamic body's displacement that holds the area
     of an area kind 2 (``ei[j, 10]``); with DELTA LEAKAGE AREA (``ei[j, 14]``) the area at activation ``ef[j, 9]``
     (of one opened by time that follows the dynamic body, set at the first segment start past its open time:
@@ -128,7 +130,7 @@ def exchange_area(ei, ef, op, iv, tx, ty, ti, j, t):
     window = ei[j, 4] == 1
     a = table_value(tx, ty, ti, ei[j, 3], t) if ei[j, 3] >= 0 else 1.0
     return activated_area(base_area(ei, ef, iv, tx, ty, ti, j, t), t, ef[j, 2] if window else -np.inf,
-                          ef[j, 3] if window else np.inf, op[j] == 0, a, ef[j, 9] if ei[j, 14] == 1 else 0.0)
+                          ef[j, 3] if window else np.inf, op[j] != 1, a, ef[j, 9] if ei[j, 14] == 1 else 0.0)
 
 
 @njit(cache=True, inline="always")
@@ -250,10 +252,13 @@ def switch_value(kind, j, ci, ei, ef, st, amb):
     """Switch function of exchange j on the states in ``st`` [-]: kind 0 choking (p_low − r*·p_high)/p_high, where
     the orifice law's second derivative jumps; kind 1 the one-way reversal Δp/p_max; kinds 2 and 3 the equalise and
     release levels of |Δp|/p_max (:mod:`exchange.equalised`); kinds 4 (pop) and 5 (pop-drop) (Δp − p_pop)/max(p_pop,
-    p_b); kind 7 the orifice law's C¹ join at |Δp|/p = LINEAR_BELOW. The pop-hold switch (kind 6) depends on time
+    p_b); kind 7 the orifice law's C¹ join at |Δp|/p = LINEAR_BELOW; kind 17 (p_b − p_close)/p_close, the
+    downstream cavity reaching the exchange's close pressure. The pop-hold switch (kind 6) depends on time
     only: :func:`exchange.compiled_kernels.switches`."""
     a, b = ei[j, 0], ei[j, 1]
     pa, pb = st[a, P], side(st, amb, b, P)
+    if kind == 17:
+        return (pb - ef[j, 10]) / ef[j, 10]
     if kind == 1:
         return (pa - pb) / max(pa, pb)
     if kind == 7:

@@ -13,7 +13,7 @@ def switch_table(net, geometry):
     """Switch kinds (0 choke, 7 orifice join, 1 one-way reversal, 2/3 equalise/release, 11/12 a law's kink,
     4 pop, 5 pop-drop, 6 pop-hold, 8/9 the dynamic body's displacement reaching the crossing above/below its area
     interval, 10 its turning point, 15/16 the knot above/below the piece of the volume spline it holds, 13 its seat,
-    14 a kink of the seat's force), their exchanges (a law's kink: j + ne·(row + 1); a knot: the pushed cavity;
+    14 a kink of the seat's force, 17 the downstream cavity reaching the close pressure), their exchanges (a law's kink: j + ne·(row + 1); a knot: the pushed cavity;
     the seat's kink: its index) and labels (each watched only in its discrete state:
     :func:`exchange.compiled_modes.watched`)."""
     kinds, js, labels = [], [], []
@@ -44,6 +44,8 @@ def switch_table(net, geometry):
             add(4, j, "pop")
             add(5, j, "pop-drop")
             add(6, j, "pop-hold")
+        if ex.activation is not None and ex.activation.close_pressure is not None:
+            add(17, j, "close")
     if geometry.get("body") is not None:  # the dynamic body's turning point, and its area crossings
         kinds.append(10)
         js.append(0)

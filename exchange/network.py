@@ -30,8 +30,8 @@ LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat l
 @dataclass
 class Network(NetworkLowering):
     """Cavities, exchanges and the environment of one scene, with its discrete state: per exchange whether a pop
-    vent has popped, when its hold started, its area when it opened (DELTA LEAKAGE AREA) and whether a two-way
-    exchange is held closed (equalised). The compiled engine keeps that state in its arrays during a run and the
+    vent has popped, when its hold started, its area when it opened (DELTA LEAKAGE AREA), whether a two-way
+    exchange is held closed (equalised) and whether it has closed for good at its close pressure. The compiled engine keeps that state in its arrays during a run and the
     network receives it per segment (``snapshot``/``restore``).
 
     Attributes
@@ -77,6 +77,7 @@ class Network(NetworkLowering):
         self.holding_since = [None] * len(self.exchanges)
         self.area_at_activation = [None] * len(self.exchanges)  # set when each exchange opens
         self.equalised = [False] * len(self.exchanges)  # two-way exchanges held closed at Δp ≈ 0
+        self.closed = [False] * len(self.exchanges)  # closed for good at their close pressure
 
     @property
     def size(self) -> int:
@@ -119,12 +120,13 @@ class Network(NetworkLowering):
     def snapshot(self) -> tuple:
         """The discrete state (for reading results back on a segment)."""
         return (tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation),
-                tuple(self.equalised))
+                tuple(self.equalised), tuple(self.closed))
 
     def restore(self, mode) -> None:
         if mode is not None:
             self.popped, self.holding_since, self.area_at_activation = (list(m) for m in mode[:3])
             self.equalised = list(mode[3]) if len(mode) > 3 else [False] * len(self.exchanges)
+            self.closed = list(mode[4]) if len(mode) > 4 else [False] * len(self.exchanges)
 
     def is_plain(self) -> bool:
         """True for a plain :class:`Network` (a subclass lowers itself only through ``lowered_geometry``)."""

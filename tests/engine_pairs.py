@@ -164,13 +164,14 @@ def _gas_point(net, cav, t, y, k):
 
 
 def _area(net, j, t, mode):
-    """Exchange j's flow area [m^2] at t in ``mode`` (popped, hold, area at activation, equalised)."""
+    """Exchange j's flow area [m^2] at t in ``mode`` (popped, hold, area at activation, equalised, closed)."""
     ex, act = net.exchanges[j], net.exchanges[j].activation
     ga = net.areas[j] if getattr(net, "areas", None) else None
     area = ga.track(t) if ga is not None else ex.area  # the blockage geometry's area track (by time)
     if act is None:
         return area
-    if not (act.open_time <= t < act.close_time) or (act.pop_pressure is not None and not mode[0][j]):
+    if not (act.open_time <= t < act.close_time) or (act.pop_pressure is not None and not mode[0][j]) \
+            or (len(mode) > 4 and mode[4][j]):
         return 0.0
     a = act.amplitude(t) if act.amplitude is not None else 1.0
     return a * (max(area - (mode[2][j] or 0.0), 0.0) if act.delta_area else area)

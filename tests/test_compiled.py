@@ -359,3 +359,55 @@ def test_twin_switches_after_a_low_order_dense_output_do_not_fire_in_turn():
     assert r.summary["solver"]["path"] == "compiled, solve_ivp"
     times = [t for t, _ in r.trajectory.events]
     assert len(times) - len(set(times)) <= 2  # no instant fires more than a switch and its twin's turn
+
+
+# ---- an exchange that closes for good once its downstream cavity reaches a pressure (a filling to a target)
+
+def filling_to_target(folder: Path, target: float, p_b: float = 1.0e5):
+    """A 1 m³ reservoir at 20 bar fills a 10 L vessel through an orifice that closes once the vessel reaches
+    ``target``; the vessel leaks slowly to ambient through a linear resistance afterwards."""
+    data = tank(pressure=20e5, volume=1.0)
+    data["cavity"][0]["name"] = "reservoir"
+    data["cavity"].append({"name": "vessel", "pressure": p_b, "temperature": 300.0, "gas": {"N2": 1.0},
+                           "volume": 0.01})
+    data["time"] = {"end": 0.5, "output_interval": 0.002}
+    data["exchange"] = [{"name": "fill", "from": "reservoir", "to": "vessel", "area": 2e-5,
+                         "close_pressure": target},
+                        {"name": "leak", "from": "vessel", "area": 1e-6, "law": "linear_resistance",
+                         "conductance": 1e-3}]
+    return build_model(scene_from_dict(data, folder / "scene.toml"))
+
+
+def test_a_filling_closes_at_its_target_pressure_on_both_integrators(tmp_path):
+    """The vessel's pressure reaches the 6 bar target at the close event (to 1e-9), the fill flow is zero from
+    then on (the leak lowers the vessel slowly), the same on both integrators, the right-hand side as the
+    reference assembly's in both states, and the network left closed."""
+    model = filling_to_target(tmp_path, 6e5)
+    assert_rhs_matches_reference(model)
+    traj = assert_same_on_both_integrators(model)
+    closes = [t for t, label in traj.events if label == "fill:close"]
+    assert len(closes) == 1 and 0.0 < closes[0] < 0.5
+    assert model.network.states(closes[0], traj(closes[0]))[1].pressure == pytest.approx(6e5, rel=1e-9)
+    rows = assert_same_history(model, traj, np.union1d(model.output_times, closes))
+    cols, t = history_columns(model), rows[:, 0]
+    flow, p = rows[:, cols.index("fill.mass_flow [kg/s]")], rows[:, cols.index("vessel.pressure [Pa]")]
+    assert np.all(flow[t >= closes[0]] == 0.0) and np.all(flow[t < closes[0]] > 0.0)
+    assert p.max() <= 6e5 * (1 + 1e-9) and p[-1] < 6e5
+    assert model.network.closed == [True, False] and traj.mode_at(0.0)[4] == (False, False)
+
+
+def test_a_vessel_already_at_its_target_is_closed_from_the_start(tmp_path):
+    model = filling_to_target(tmp_path, 6e5, p_b=7e5)
+    r = run(model)
+    assert r.trajectory.events[0] == (0.0, "fill:close")
+    assert np.all(r.column("fill.mass_flow") == 0.0)
+
+
+def test_a_close_pressure_on_a_vent_to_ambient_is_one_line(tmp_path):
+    from cases.scene.errors import SceneError
+
+    data = tank(pressure=3e5)
+    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4, "close_pressure": 2e5}]
+    with pytest.raises(SceneError, match=r"exchange\[0\]\.close_pressure: needs a `to` cavity") as exc:
+        build_model(scene_from_dict(data, tmp_path / "scene.toml"))
+    assert "\n" not in str(exc.value)

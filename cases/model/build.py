@@ -265,9 +265,9 @@ def _exchange(scene: Scene, i: int, names: list) -> Exchange:
         raise SceneError(scene.path, f"{where}.{_law_key(e.law)}", str(exc)) from None
     pop = e.pop_pressure or None
     activation = None
-    if e.open_time or e.close_time or pop or e.amplitude is not None or e.delta_area:
+    if e.open_time or e.close_time or pop or e.amplitude is not None or e.delta_area or e.close_pressure:
         activation = Activation(e.open_time, e.close_time or math.inf, pop, e.pop_hold_time, e.amplitude,
-                                e.delta_area)
+                                e.delta_area, e.close_pressure or None)
     return Exchange(e.name, names.index(e.from_), None if e.to == "ambient" else names.index(e.to), law, e.area,
                     e.two_way, activation)
 
@@ -349,6 +349,8 @@ def _activation_text(e) -> str:
         parts.append(f"open from {e.open_time} s" + (f" to {e.close_time} s" if e.close_time else ""))
     if e.pop_pressure:
         parts.append(f"pops at {e.pop_pressure} Pa" + (f" held {e.pop_hold_time} s" if e.pop_hold_time else ""))
+    if e.close_pressure:
+        parts.append(f"closes once {e.to} reaches {e.close_pressure} Pa")
     if e.amplitude is not None:
         parts.append("area amplitude table")
     if e.delta_area:

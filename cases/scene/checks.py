@@ -146,6 +146,9 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
         raise SceneError(path, f"{where}.close_time", f"must be later than open_time ({e.open_time} s)")
     if e.pop_hold_time and not e.pop_pressure:
         raise SceneError(path, f"{where}.pop_hold_time", "needs pop_pressure")
+    if e.close_pressure and e.to == "ambient":
+        raise SceneError(path, f"{where}.close_pressure", "needs a `to` cavity (the pressure it closes at is that "
+                         "cavity's); to stop a vent to ambient use close_time")
 
 
 PNEUMATIC_LAWS = ("orifice", "fabric_leakage")

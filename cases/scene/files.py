@@ -212,6 +212,9 @@ class ExchangeSpec:
                               "0: no pop condition", "Pa", default=0.0, check="nonnegative")
     pop_hold_time: float = key("activation: how long p_from − p_to must stay above pop_pressure", "s",
                                default=0.0, check="nonnegative")
+    close_pressure: float = key("activation: closes for good once the pressure of the `to` cavity reaches this (a "
+                                "filling stopped at its target pressure); 0: never", "Pa", default=0.0,
+                                check="nonnegative")
     amplitude: object = key("activation: area multiplier, a number or CSV (time [s], [-])", default=None)
     delta_area: bool = key("activation: current leakage area minus the area at activation (Abaqus DELTA "
                            "LEAKAGE AREA)", default=False)
