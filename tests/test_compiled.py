@@ -411,3 +411,21 @@ def test_a_close_pressure_on_a_vent_to_ambient_is_one_line(tmp_path):
     with pytest.raises(SceneError, match=r"exchange\[0\]\.close_pressure: needs a `to` cavity") as exc:
         build_model(scene_from_dict(data, tmp_path / "scene.toml"))
     assert "\n" not in str(exc.value)
+
+
+def test_the_integrator_is_a_scene_key(tmp_path):
+    """``[solver] integrator = "scipy"`` runs DOP853 through solve_ivp on the engine (the same history to 1e-12
+    here); another value is one line naming the key and the choices."""
+    from cases.scene.errors import SceneError
+
+    data = tank(pressure=3e5)
+    data["exchange"] = [{"name": "vent", "from": "tank", "area": 1e-4}]
+    fast = run(build_model(scene_from_dict(data, tmp_path / "a.toml")))
+    data["solver"]["integrator"] = "scipy"
+    slow = run(build_model(scene_from_dict(data, tmp_path / "b.toml")))
+    assert (fast.summary["solver"]["path"], slow.summary["solver"]["path"]) == ("compiled", "compiled, solve_ivp")
+    np.testing.assert_allclose(slow.column("tank.pressure"), fast.column("tank.pressure"), rtol=1e-12)
+    data["solver"]["integrator"] = "python"
+    with pytest.raises(SceneError, match=r"solver\.integrator") as exc:
+        build_model(scene_from_dict(data, tmp_path / "c.toml"))
+    assert "\n" not in str(exc.value) and "scipy" in str(exc.value)

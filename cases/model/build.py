@@ -92,7 +92,7 @@ def _build(scene: Scene) -> Model:
     s = scene.solver
     options = SolverOptions(method=s.method, rtol=s.rtol, atol=(s.atol or s.rtol / 100) * _scales(network, t_end),
                             max_step=s.max_step or math.inf, max_steps=scene.limits.steps,
-                            max_wall=scene.limits.wall or math.inf)
+                            max_wall=scene.limits.wall or math.inf, integrator=s.integrator)
     return Model(scene, network, options, times, _modelled(scene, cavities), geo)
 
 

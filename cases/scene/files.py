@@ -44,6 +44,9 @@ class SolverSpec:
     atol: float = key("absolute tolerance as a fraction of each unknown's scale (initial plus inflated mass, "
                       "and the matching energy); 0: rtol/100", default=0.0, check="nonnegative")
     max_step: float = key("largest step (0: unlimited)", "s", default=0.0, check="nonnegative")
+    integrator: str = key("'compiled': DOP853 in one numba call; 'scipy': solve_ivp steps the same compiled "
+                          "kernels with DOP853 too (a second implementation, to cross-check a run); the other "
+                          "methods always step through solve_ivp", default="compiled", choices=("compiled", "scipy"))
 
 
 @dataclass(frozen=True, kw_only=True)
