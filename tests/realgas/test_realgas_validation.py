@@ -114,3 +114,37 @@ def test_h2_fillings(runs):
     assert d.column("vessel.pressure")[-1] / 1e5 == pytest.approx(386.5, abs=2.0)
     assert d.column("vessel.temperature")[-1] - 273.15 == pytest.approx(83.0, abs=1.0)
     assert d.column("vessel.temperature")[-1] - d.column("vessel.wall_temperature")[-1] == pytest.approx(25.5, abs=3)
+
+
+@pytest.mark.parametrize("rate, t_close, dT_max, T_rms", [(5, 165.0, 1.1, 3.3), (10, 82.5, -0.1, 4.2),
+                                                          (30, 29.0, -3.3, 5.6)])
+def test_striednig_fillings(runs, rate, t_close, dT_max, T_rms):
+    """Striednig et al., H2 from 50 to 240 bar at 5, 10, 30 MPa/min through the set-ups' orifices from 480 bar:
+    the orifice closes for good at 240 bar (at 165, 82.5, 29 s: 8 % before HydDown's 180, 90, 31.5 s, the real-gas
+    critical flux being 8.2 % above HydDown's formula at 480 bar), the vessel's mass stays and its pressure falls as
+    the gas cools; the peak gas temperature 1.1 K above, 0.1 and 3.3 K below the measured (each within 1 K), T RMS
+    3.3, 4.2, 5.6 K (within 0.7 K), and the last point within 1 K of the measured."""
+    r = runs(f"h2_striednig_{rate}MPa_min_filling")
+    closes = [t for t, label in r.trajectory.events if label == "orifice:close"]
+    assert len(closes) == 1 and closes[0] == pytest.approx(t_close, rel=0.02)
+    t, p, m = r.column("time"), r.column("vessel.pressure"), r.column("vessel.mass")
+    assert p.max() == pytest.approx(240e5, rel=2e-3) and p[-1] < 235e5
+    after = t > closes[0]
+    assert np.ptp(m[after]) <= 1e-9 * m[-1]
+    tm, Tm = _csv(f"h2_striednig_{rate}MPa_min_gas_mean")
+    T = r.column("vessel.temperature")
+    assert T.max() - Tm.max() == pytest.approx(dT_max, abs=1.0)
+    assert abs(T.max() - Tm.max()) <= 5.0
+    assert _rms(r, "vessel.temperature", tm, Tm) == pytest.approx(T_rms, abs=0.7)
+    assert T[-1] == pytest.approx(Tm[-1], abs=1.0)
+
+
+def test_air_filling_measured(runs):
+    """The air filling from 3.7 kPa at 295 K: pressure within 0.022 bar RMS of the measured; the gas peaks at 326.3 K
+    after 1 s, 12.2 K above the upper probe's 314.1 K at 7 s (HydDown: 320.7 K at 6 s, its inflow enthalpy blended
+    from the reservoir's u to h over the first seconds), T RMS 8.8 K."""
+    r = runs("air_3_7kPa_filling_271mm")
+    assert _rms(r, "vessel.pressure", *_csv("air_3_7kPa_271mm_pressure"), 1e5) <= 0.03
+    t, T = _csv("air_3_7kPa_271mm_gas_high")
+    assert r.column("vessel.temperature").max() == pytest.approx(326.3, abs=1.0)
+    assert _rms(r, "vessel.temperature", t, T) == pytest.approx(8.8, abs=1.0)
