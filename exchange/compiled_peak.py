@@ -25,6 +25,8 @@ __all__ = ["pressure_at", "bounded_minimum_of_minus_p", "peak_pressures", "peaks
 SQRT_EPS = math.sqrt(2.2e-16)  # as scipy's _minimize_scalar_bounded
 GOLDEN_MEAN = 0.5 * (3.0 - math.sqrt(5.0))
 MAXITER = 500
+# a largest value at the record's first or last time is refined only if p is larger this fraction of the step inside
+EDGE_PROBE = 1e-7
 
 
 @njit(cache=True)
@@ -115,7 +117,8 @@ def bounded_minimum_of_minus_p(M, recs, segs, c, x1, x2, xatol, y, guess, st, n,
 @njit(cache=True)
 def peak_pressures(M, recs, segs, ts):
     """(ok, (nc, 2) array of [peak pressure [Pa], its time [s]]) per cavity: the largest pressure at the
-    candidate times ``ts`` [s] (sorted), refined between its neighbours (:func:`cases.run.runner.refine_peak`)."""
+    candidate times ``ts`` [s] (sorted), refined between its neighbours as
+    :func:`cases.results.readback.refine_peak` does (an end only if the pressure rises inside)."""
     ci, cf, st, n, row = M[7], M[8], M[17], M[18], M[19]
     nc, m = ci.shape[0], ts.size
     y, guess = np.empty((recs.shape[1] - RECORD) // 8), cf[:, 0].copy()
@@ -130,6 +133,10 @@ def peak_pressures(M, recs, segs, ts):
         k = np.argmax(ps[:, c])
         out[c, 0], out[c, 1] = ps[k, c], ts[k]
         lo, hi = ts[max(k - 1, 0)], ts[min(k + 1, m - 1)]
+        if hi > lo and (k == 0 or k == m - 1):  # at an end: searched only if the pressure rises into the record
+            t_in = ts[k] + (EDGE_PROBE if k == 0 else -EDGE_PROBE) * (hi - lo)
+            if not pressure_at(M, recs, segs, c, t_in, y, guess, st_, n_, row_) > out[c, 0]:
+                continue
         if hi > lo:
             p, t = bounded_minimum_of_minus_p(M, recs, segs, c, lo, hi, 1e-14 * max(1.0, hi), y, guess, st_, n_,
                                               row_)
