@@ -2,7 +2,7 @@
 
 Requires: hyddown (a separate venv: ``python3 -m venv /work/venv-hyddown && /work/venv-hyddown/bin/pip install
 hyddown``). Usage: ``python _hyddown_run.py SETUP.yml [REPEATS]`` -> {"wall time [s]", "cpu time [s]" (best of the repeats), "time", "p",
-"T", "T_wall"}.
+"T", "T_wall" (the vessel's mean wall), "T_wall_inner", "T_wall_outer" (its surfaces)}.
 """
 import json
 import sys
@@ -21,4 +21,6 @@ for _ in range(repeats):  # the first run also loads CoolProp's fluid: the best 
     hd.run()
     wall, cpu = min(wall, time.perf_counter() - start), min(cpu, time.process_time() - start_cpu)
 print(json.dumps({"wall time [s]": wall, "cpu time [s]": cpu, "time": list(map(float, hd.time_array)), "p": list(map(float, hd.P)),
-                  "T": list(map(float, hd.T_fluid)), "T_wall": list(map(float, hd.T_vessel))}))
+                  "T": list(map(float, hd.T_fluid)), "T_wall": list(map(float, hd.T_vessel)),
+                  "T_wall_inner": list(map(float, hd.T_inner_wall)),
+                  "T_wall_outer": list(map(float, hd.T_outer_wall))}))
