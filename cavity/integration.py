@@ -283,10 +283,11 @@ def _watched(g, direction):
 def _step_budget(system, remaining: int, options, deadline: float):
     """A never-firing event: scipy evaluates it once per accepted step, so it counts the steps of one solve and
     stops a segment that exceeds the run's step budget or its wall-time ``deadline`` (solve_ivp has neither)."""
-    count = [0]
+    count, last = [0], [-math.inf]
 
     def budget(t, y):
         count[0] += 1
+        last[0] = t
         if count[0] > remaining + 1:  # the first call is at the segment's start
             raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}"
                               f"{stiffness_advice(options.method)}")
@@ -295,8 +296,26 @@ def _step_budget(system, remaining: int, options, deadline: float):
                               f"{system.describe(t, y)}")
         return 1.0
 
-    budget.terminal, budget.direction, budget.label = False, 0.0, "step budget"
+    budget.terminal, budget.direction, budget.label, budget.last_step = False, 0.0, "step budget", last
     return budget
+
+
+def _keep_progress(system, t, y, t_ok: float, options, traj) -> None:
+    """After a failure inside the segment from t: integrate it again up to ``t_ok``, its last accepted step (the
+    same steps up to there), and keep that piece in ``traj``, so that a failed run keeps what it had integrated
+    (solve_ivp returns nothing when the right-hand side raises). Nothing is kept if that fails too."""
+    if not t_ok > t:
+        return
+    try:
+        sol = solve_ivp(system.rhs, (t, t_ok), y, method=options.method, rtol=options.rtol, atol=options.atol,
+                        max_step=options.max_step, dense_output=True,
+                        **jacobian_option(system, options.method, system.rhs, traj.stats))
+    except (ArithmeticError, ValueError):
+        return
+    if sol.status == 0:
+        traj.segments.append(sol.sol)
+        traj.modes.append(system.snapshot() if hasattr(system, "snapshot") else None)
+        traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
 
 
 def _state_at_event(system, sol, t_event, options, traj):
@@ -333,14 +352,16 @@ def _advance(system, t, y, stop, options, traj):
     remaining = options.max_steps - traj.stats["steps"]
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
-    events = events + [_step_budget(system, remaining, options, traj.deadline)]
+    budget = _step_budget(system, remaining, options, traj.deadline)
     try:
         rhs = system.rhs
         sol = solve_ivp(rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
-                        max_step=options.max_step, dense_output=True, events=events,
+                        max_step=options.max_step, dense_output=True, events=events + [budget],
                         **jacobian_option(system, options.method, rhs, traj.stats))
     except (ArithmeticError, ValueError) as exc:
-        raise SolverError(f"the right-hand side failed near t = {t:.9g} s ({exc}); {system.describe(t, y)}") from None
+        _keep_progress(system, t, y, budget.last_step[0], options, traj)
+        raise SolverError(f"the right-hand side failed in the segment from t = {t:.9g} s ({exc}); at the "
+                          f"segment's start: {system.describe(t, y)}") from None
     if sol.status == -1:
         raise SolverError(f"{options.method} stopped at t = {sol.t[-1]:.9g} s: {sol.message}; "
                           f"{system.describe(sol.t[-1], sol.y[:, -1])}{stiffness_advice(options.method)}")

@@ -7,7 +7,9 @@ constant offset cancels from every energy balance because species are conserved)
 from __future__ import annotations
 
 import bisect
+import functools
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,7 +17,8 @@ import numpy as np
 from .tolerances import R_UNIVERSAL
 
 __all__ = ["Species", "heat_capacity_polynomial", "enthalpy_polynomial", "molar_heat_capacity", "molar_enthalpy", "molar_internal_energy", "species_from_coolprop",
-           "fit_species_from_coolprop", "species_record", "builtin_species", "BUILTIN_COOLPROP_NAMES"]
+           "fit_species_from_coolprop", "species_record", "builtin_species", "BUILTIN_COOLPROP_NAMES",
+           "coolprop_fluid_name"]
 
 N_COEFFICIENTS = 6
 
@@ -185,6 +188,29 @@ COOLPROP_RANGE = (100.0, 3000.0)
 BUILTIN_COOLPROP_NAMES = {"N2": "Nitrogen", "O2": "Oxygen", "CO2": "CarbonDioxide", "He": "Helium", "Ar": "Argon",
                           "H2O": "Water", "H2": "Hydrogen", "Air": "Air"}
 
+
+
+@functools.lru_cache(maxsize=None)
+def coolprop_fluid_name(name: str) -> str:
+    """CoolProp's fluid for a species ``name``: a built-in short name (``N2`` → ``Nitrogen``), a fluid name or
+    alias CoolProp knows (``CH4``, ``Propane``), or a chemical formula exactly one CoolProp fluid has (``C2H6`` →
+    ``Ethane``; ``C4H10``, two butanes, is not resolved); else ``name`` unchanged (CoolProp's error names it)."""
+    if name in BUILTIN_COOLPROP_NAMES:
+        return BUILTIN_COOLPROP_NAMES[name]
+    import CoolProp.CoolProp as CP
+
+    fluids = CP.get_global_param_string("FluidsList").split(",")
+    if any(name == f or name in CP.get_fluid_param_string(f, "aliases").split(",") for f in fluids):
+        return name
+    same = [f for f in fluids if _formula(CP.get_fluid_param_string(f, "formula")) == name]
+    return same[0] if len(same) == 1 else name
+
+
+def _formula(coolprop_formula: str) -> str:
+    """A CoolProp formula as written by hand: ``C_{2}H_{6}`` → ``C2H6``, ``C_{1}H_{4}`` → ``CH4``."""
+    return re.sub(r"_\{(\d+)\}", lambda m: "" if m.group(1) == "1" else m.group(1), coolprop_formula)
+
+
 #: Abaqus verification-deck air (../shared/PHYSICS.md): M and cp polynomial.
 ABAQUS_AIR = Species("air", 0.0289, (28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0), source="Abaqus verification deck")
 
@@ -196,7 +222,7 @@ def species_from_coolprop(name: str, *, label: str | None = None, t_range: tuple
     the machine that cached it, elsewhere in cp(T) to round-off (another LAPACK orders the least squares otherwise)."""
     from . import species_fits
 
-    fluid = BUILTIN_COOLPROP_NAMES.get(name, name)
+    fluid = coolprop_fluid_name(name)
     key = coolprop_fit_key(fluid, t_range, width)
     record = species_fits.lookup(key)
     if record is None:
@@ -243,11 +269,11 @@ def fit_species_from_coolprop(name: str, *, label: str | None = None, t_range: t
     Parameters
     ----------
     name : str
-        CoolProp fluid name (``"Nitrogen"``) or a short alias from :data:`BUILTIN_COOLPROP_NAMES` (``"N2"``).
+        CoolProp fluid name (``"Nitrogen"``), alias or formula (``"N2"``, ``"C2H6"``: :func:`coolprop_fluid_name`).
     """
     import CoolProp.CoolProp as CP
 
-    fluid = BUILTIN_COOLPROP_NAMES.get(name, name)
+    fluid = coolprop_fluid_name(name)
     try:
         state = CP.AbstractState("HEOS", fluid)
     except ValueError as exc:

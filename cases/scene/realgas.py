@@ -4,7 +4,7 @@ from __future__ import annotations
 import functools
 
 from cavity.realgas_cavity import REAL_GAS_ENERGY_MODELS
-from cavity.species import BUILTIN_COOLPROP_NAMES
+from cavity.species import coolprop_fluid_name
 
 from cases.scene.errors import SceneError
 from cases.scene.schema import suggest
@@ -20,7 +20,7 @@ def coolprop_name(scene, species: str) -> str:
             return sp.coolprop
     if species.lower() == "air" and species != "Air":
         return ""  # the Abaqus-deck air polynomial: no equation of state
-    return BUILTIN_COOLPROP_NAMES.get(species, species)
+    return coolprop_fluid_name(species)
 
 
 def _species(gas: dict) -> set:

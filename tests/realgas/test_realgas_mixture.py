@@ -245,6 +245,30 @@ def test_bad_mixtures_are_one_line(tmp_path, old, new, where, what):
     assert where in msg and what in msg and "s.toml" in msg and "\n" not in msg
 
 
+def test_species_named_by_formula_are_coolprops_fluids(tmp_path):
+    """A natural gas written as formulas, {CH4, C2H6, C3H8} with no [[species]]: C2H6 (no CoolProp alias) is the
+    one fluid of that formula, Ethane; C4H10 (n-butane and isobutane) stays unresolved and is a one-line error."""
+    from cases.scene.errors import SceneError
+    from cases.scene.files import load_scene
+    from cavity.species import coolprop_fluid_name
+
+    assert [coolprop_fluid_name(n) for n in ("N2", "CH4", "C2H6", "C3H8", "C4H10")] == [
+        "Nitrogen", "CH4", "Ethane", "C3H8", "C4H10"]
+    from cases.model.build import build_model
+    from cases.run.runner import run
+
+    text = SCENE.format(end=1e-3, rtol=1e-8, gas="{CH4 = 0.85, C2H6 = 0.1, C3H8 = 0.05}", body="volume = 0.01")
+    (tmp_path / "s.toml").write_text(text.replace("300.0e5", "150.0e5"))  # 300 bar: CoolProp's flash fails
+    r = run(build_model(load_scene(tmp_path / "s.toml")))
+    f = r.model.network.cavities[0].fluid
+    assert f.name.split("&") == ["CH4", "Ethane", "C3H8"]
+    assert r.column("vessel.pressure")[0] == pytest.approx(150e5, rel=1e-12)
+    (tmp_path / "b.toml").write_text(SCENE.format(end=1.0, rtol=1e-8, gas="{CH4 = 0.9, C4H10 = 0.1}",
+                                                  body="volume = 0.01"))
+    with pytest.raises(SceneError, match="C4H10"):
+        load_scene(tmp_path / "b.toml")
+
+
 def test_a_binary_pair_coolprop_lacks_is_one_line(tmp_path):
     """R134a/He has no mixture parameters in CoolProp: a one-line SceneError at build, naming the key."""
     from cases.model.build import build_model
