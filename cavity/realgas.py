@@ -146,10 +146,25 @@ class RealFluid:
         if a is not None:
             guess = a[2] + (u - a[1] - a[3] * (rho - a[0])) / a[4]
             T_guess = guess if 0.5 * T_guess < guess < 2.0 * T_guess else T_guess
-        T, pt, (last, dT, _) = _newton(self, rho, u, T_guess, 1)
+        try:
+            T, pt, (last, dT, _) = _newton(self, rho, u, T_guess, 1)
+        except RealGasSolveError:
+            self._anchor = None
+            return self._state_from_above(rho, u, T_guess)
         # ∂u/∂ρ|T = (p − T ∂p/∂T|ρ)/ρ² (from (∂u/∂v)_T = T(∂p/∂T)_v − p)
         self._anchor = (rho, u, T, (last[0] - T * dT[0]) / (rho * rho), last[5])
         return T, pt
+
+    def _state_from_above(self, rho: float, u: float, T_guess: float) -> tuple:
+        """(T, FluidPoint) when Newton's iterates entered the two-phase dome from a guess far below the state (a
+        restart after a failure, a jump): Newton again from above the critical temperature, where no dome is, so
+        that the iterates come down to a single-phase state from the gas side (u rises with T at fixed ρ, cv > 0);
+        RealGasSolveError (two-phase) when the state itself is inside the dome."""
+        try:
+            T_top = 1.5 * self._state.T_critical()
+        except ValueError:  # a mixture: CoolProp has no single critical point (its phase is imposed anyway)
+            T_top = 2.0 * T_guess
+        return _newton(self, rho, u, max(T_guess, T_top), 1)[:2]
 
     def density(self, p: float, T: float) -> float:
         """Density [kg/m^3] at pressure p [Pa] and temperature T [K] (a CoolProp flash, for initial states)."""

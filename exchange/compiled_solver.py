@@ -280,6 +280,10 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near, de
                                                             max_step, max_steps, stats, buf, cnt, deadline)
             stats[2] += 1
             if status != OK:
+                if status != NOT_FINITE and cnt[0] > first:  # keep the accepted steps of the piece it stopped in
+                    segs = _grow(segs, nseg + 1)
+                    record_segment(M, segs, nseg, first, cnt[0], t, t_end, mode)
+                    nseg += 1
                 return status, t_end, y_end, buf[:cnt[0]], segs[:nseg], evs[:nev], stats
             segs = _grow(segs, nseg + 2)
             record_segment(M, segs, nseg, first, cnt[0], t, t_end, mode)

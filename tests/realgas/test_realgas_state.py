@@ -142,3 +142,25 @@ def test_state_from_the_predictor_equals_a_cold_newton():
         assert T1 == pytest.approx(T2, rel=1e-12) and pt.p == pytest.approx(ref.p, rel=1e-12)
         heos.update(CP.DmassUmass_INPUTS, rho, u - f.offset)
         assert pt.p == pytest.approx(heos.p(), rel=1e-10)
+
+
+@pytest.mark.parametrize("fluid,rho,T", [("Nitrogen", 302.6, 293.0), ("Nitrogen", 40.0, 110.0),
+                                         ("CarbonDioxide", 200.0, 305.0), ("CarbonDioxide", 700.0, 320.0)])
+def test_a_guess_inside_the_dome_still_finds_the_single_phase_state(fluid, rho, T):
+    """A first guess whose (ρ, T) is two-phase (after a failed step, the anchor and the guess sit at the dew line:
+    N2 at its critical density guessed at 101 K) is not itself an error: the Newton restarts from above the
+    critical temperature and finds the state, as HEOS's (ρ, u) flash; a state inside the dome still is one."""
+    f = RealFluid(fluid)
+    heos = CP.AbstractState("HEOS", fluid)
+    u = f.at(rho, T).u
+    cold = 0.6 * heos.T_critical()
+    with pytest.raises(Exception):
+        f.at(rho, cold)  # the guess is two-phase
+    T1, pt = f.state(rho, u, cold)
+    assert T1 == pytest.approx(T, rel=1e-12)
+    heos.update(CP.DmassUmass_INPUTS, rho, u - f.offset)
+    assert pt.p == pytest.approx(heos.p(), rel=1e-10)
+    heos.update(CP.QT_INPUTS, 0.5, cold)
+    inside = 0.5 * (heos.saturated_liquid_keyed_output(CP.iDmass) + heos.saturated_vapor_keyed_output(CP.iDmass))
+    with pytest.raises(Exception, match="two-phase"):
+        f.state(inside, heos.umass() + f.offset, T)
