@@ -253,6 +253,17 @@ def piece(M, wk, wj, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_ste
 
 
 @njit(cache=True)
+def _keep_piece(M, segs, nseg, status, first, end, t, t_end, mode):
+    """(segments, count) with the accepted steps (records first..end, t to t_end) of the piece a run stopped in
+    as one more segment, so that a failed run keeps them; not after a non-finite step (its record holds it)."""
+    if status == NOT_FINITE or end <= first:
+        return segs, nseg
+    segs = _grow(segs, nseg + 1)
+    record_segment(M, segs, nseg, first, end, t, t_end, mode)
+    return segs, nseg + 1
+
+
+@njit(cache=True)
 def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near, deadline=math.inf):
     """Integrate from t0 through every stop (the last is the end), stopping with WALL_BUDGET once
     ``time.perf_counter()`` passes ``deadline`` (looked at every WALL_CHECK_EVERY steps).
@@ -280,10 +291,7 @@ def solve(M, kinds, js, y0, t0, stops, rtol, atol, max_step, max_steps, near, de
                                                             max_step, max_steps, stats, buf, cnt, deadline)
             stats[2] += 1
             if status != OK:
-                if status != NOT_FINITE and cnt[0] > first:  # keep the accepted steps of the piece it stopped in
-                    segs = _grow(segs, nseg + 1)
-                    record_segment(M, segs, nseg, first, cnt[0], t, t_end, mode)
-                    nseg += 1
+                segs, nseg = _keep_piece(M, segs, nseg, status, first, cnt[0], t, t_end, mode)
                 return status, t_end, y_end, buf[:cnt[0]], segs[:nseg], evs[:nev], stats
             segs = _grow(segs, nseg + 2)
             record_segment(M, segs, nseg, first, cnt[0], t, t_end, mode)
