@@ -80,8 +80,13 @@ class RealGasCavity(Cavity):
         """The state at t from this cavity's slice of the unknowns (masses clipped at 0 for the equation of
         state)."""
         ns = len(self.initial_masses)
-        masses = np.maximum(unknowns[:ns], 0.0)
-        m = float(masses[0]) if ns == 1 else float(masses.sum())
+        if ns == 1:  # (np.maximum on one entry costs as much as the rest of this method's bookkeeping)
+            m = float(unknowns[0])
+            m = m if m > 0.0 else 0.0
+            masses = np.array((m,))
+        else:
+            masses = np.maximum(unknowns[:ns], 0.0)
+            m = float(masses.sum())
         V = self.volume(t) + self.added_volume
         V_eos = V if V > self.minimum_volume else self.minimum_volume
         rate = self.volume.rate(t) if V > self.minimum_volume else 0.0
@@ -98,7 +103,7 @@ class RealGasCavity(Cavity):
         if self.wall is not None:  # its heat flows: wall_heat, called by the right-hand side only
             s.wall_temperature = float(unknowns[ns + 1])
             s.outer_wall_temperature = float(unknowns[ns + self.wall.layers])
-            s.wall_layers = tuple(unknowns[ns + 1:ns + 1 + self.wall.layers])
+            s.wall_layers = tuple(unknowns[ns + 1:ns + 1 + self.wall.layers].tolist())
         else:
             s.heat_out = self.heat_loss(T)  # Cavity's h_c·A·(T − T_amb), 0 unless heat_loss
         return s

@@ -22,6 +22,7 @@ import weakref
 import numpy as np
 
 from .compiled_tables import DV, FR, GAM, H, MASS, P, RG, RHO, TT, V
+from .realgas_orifice import real_gas_point
 from .vent import GasPoint
 
 __all__ = ["Host", "register", "host_of", "cavity_state", "law_flow", "wall_heat", "choke_ratio"]
@@ -32,12 +33,14 @@ _FAILURES = (ArithmeticError, ValueError)
 
 
 class Host:
-    """A registered network's hosted parts, with the last state of each real-gas cavity (set by
-    :func:`cavity_state` at the start of every evaluation, read by the flows, walls and switches after it)."""
+    """A registered network's hosted parts, with the last state of each real-gas cavity and its flow-law view
+    (set by :func:`cavity_state` at the start of every evaluation, read by the flows, walls and switches after
+    it)."""
 
     def __init__(self, net):
         self._net = weakref.ref(net)
         self.states = [None] * len(net.cavities)
+        self.points = [None] * len(net.cavities)
         self.error: BaseException | None = None
 
     @property
@@ -51,9 +54,7 @@ class Host:
         if u < 0:
             return net._ambient_point
         if getattr(net.cavities[u], "kind", "gas") == "realgas":
-            from .realgas_orifice import real_gas_point
-
-            return real_gas_point(self.states[u])
+            return self.points[u]
         row, ns = st[u], len(net.cavities[u].initial_masses)
         return GasPoint(row[P], row[TT], row[RHO], row[RG], row[GAM], row[H], row[FR:FR + ns].copy())
 
@@ -78,17 +79,15 @@ def cavity_state(h: int, i: int, t: float, y, st, T_guess: float) -> float:
     """Fill row i of the state scratch ``st`` (:mod:`exchange.compiled_rhs`) with real-gas cavity i's state at
     (t, y) (:meth:`cavity.realgas_cavity.RealGasCavity.state` and its gas point); returns T [K], NaN if it
     failed."""
-    from .realgas_orifice import real_gas_point
-
     host = HOSTS[h]
-    cav = host.network.cavities[i]
-    k = host.network.offsets[i]
+    net = host.network
+    cav, k = net.cavities[i], net.offsets[i]
     try:
         s = cav.state(t, y[k:k + cav.n_unknowns], T_guess)
     except _FAILURES as exc:
         return host.fail(exc)
-    host.states[i] = s
     pt, row, ns = real_gas_point(s), st[i], len(cav.initial_masses)
+    host.states[i], host.points[i] = s, pt
     row[P], row[TT], row[RHO], row[RG], row[GAM], row[H] = pt.p, pt.T, pt.rho, pt.R, pt.gamma, pt.h
     row[V], row[DV], row[MASS] = s.volume, s.volume_rate, s.mixture.mass
     row[FR:FR + ns] = pt.mass_fractions
@@ -124,10 +123,8 @@ def wall_heat(h: int, i: int, inflow: float, dy) -> float:
 def choke_ratio(h: int, i: int) -> float:
     """p*/p0 [-] of real-gas cavity i's last state (:meth:`exchange.realgas_orifice.RealGasPoint.choke_ratio`);
     NaN if it failed."""
-    from .realgas_orifice import real_gas_point
-
     host = HOSTS[h]
     try:
-        return float(real_gas_point(host.states[i]).choke_ratio())
+        return float(host.points[i].choke_ratio())
     except _FAILURES as exc:
         return host.fail(exc)
