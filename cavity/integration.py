@@ -301,21 +301,28 @@ def _step_budget(system, remaining: int, options, deadline: float):
 
 
 def _keep_progress(system, t, y, t_ok: float, options, traj) -> None:
-    """After a failure inside the segment from t: integrate it again up to ``t_ok``, its last accepted step (the
-    same steps up to there), and keep that piece in ``traj``, so that a failed run keeps what it had integrated
-    (solve_ivp returns nothing when the right-hand side raises). Nothing is kept if that fails too."""
-    if not t_ok > t:
-        return
+    """After a failure inside the segment from t: integrate it again to ``t_ok``, its last accepted step, and keep
+    that in ``traj`` (solve_ivp returns nothing when the right-hand side raises); nothing if that fails too."""
     try:
-        sol = solve_ivp(system.rhs, (t, t_ok), y, method=options.method, rtol=options.rtol, atol=options.atol,
-                        max_step=options.max_step, dense_output=True,
-                        **jacobian_option(system, options.method, system.rhs, traj.stats))
+        sol = _solve(system, t, t_ok, y, options, traj, []) if t_ok > t else None
     except (ArithmeticError, ValueError):
         return
-    if sol.status == 0:
-        traj.segments.append(sol.sol)
-        traj.modes.append(system.snapshot() if hasattr(system, "snapshot") else None)
-        traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
+    if sol is not None and sol.status == 0:
+        _keep_segment(system, sol, traj)
+
+
+def _solve(system, t, stop, y, options, traj, events):
+    """One solve_ivp call of the system from (t, y) to stop with dense output, watching ``events``."""
+    return solve_ivp(system.rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
+                     max_step=options.max_step, dense_output=True, events=events,
+                     **jacobian_option(system, options.method, system.rhs, traj.stats))
+
+
+def _keep_segment(system, sol, traj) -> None:
+    """Append a solve_ivp solution to ``traj``: its dense output, the discrete state it ran in, its step times."""
+    traj.segments.append(sol.sol)
+    traj.modes.append(system.snapshot() if hasattr(system, "snapshot") else None)
+    traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
 
 
 def _state_at_event(system, sol, t_event, options, traj):
@@ -354,10 +361,7 @@ def _advance(system, t, y, stop, options, traj):
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
     budget = _step_budget(system, remaining, options, traj.deadline)
     try:
-        rhs = system.rhs
-        sol = solve_ivp(rhs, (t, stop), y, method=options.method, rtol=options.rtol, atol=options.atol,
-                        max_step=options.max_step, dense_output=True, events=events + [budget],
-                        **jacobian_option(system, options.method, rhs, traj.stats))
+        sol = _solve(system, t, stop, y, options, traj, events + [budget])
     except (ArithmeticError, ValueError) as exc:
         _keep_progress(system, t, y, budget.last_step[0], options, traj)
         raise SolverError(f"the right-hand side failed in the segment from t = {t:.9g} s ({exc}); at the "
@@ -373,9 +377,7 @@ def _advance(system, t, y, stop, options, traj):
     st["jacobians"] += sol.njev
     st["lu_decompositions"] += sol.nlu
     st["restarts"] += 1
-    traj.segments.append(sol.sol)
-    traj.modes.append(system.snapshot() if hasattr(system, "snapshot") else None)
-    traj.step_times.extend(sol.t[1:] if traj.step_times else sol.t)
+    _keep_segment(system, sol, traj)
     t_end, y_end = float(sol.t[-1]), sol.y[:, -1]
     if sol.status != 1:
         traj.last_event = None

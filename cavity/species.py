@@ -18,7 +18,7 @@ from .tolerances import R_UNIVERSAL
 
 __all__ = ["Species", "heat_capacity_polynomial", "enthalpy_polynomial", "molar_heat_capacity", "molar_enthalpy", "molar_internal_energy", "species_from_coolprop",
            "fit_species_from_coolprop", "species_record", "builtin_species", "BUILTIN_COOLPROP_NAMES",
-           "coolprop_fluid_name"]
+           "coolprop_fluid_name", "coolprop_fluid_names"]
 
 N_COEFFICIENTS = 6
 
@@ -189,6 +189,14 @@ BUILTIN_COOLPROP_NAMES = {"N2": "Nitrogen", "O2": "Oxygen", "CO2": "CarbonDioxid
                           "H2O": "Water", "H2": "Hydrogen", "Air": "Air"}
 
 
+@functools.lru_cache(maxsize=1)
+def coolprop_fluid_names() -> tuple:
+    """CoolProp's fluid names and their aliases."""
+    import CoolProp.CoolProp as CP
+
+    names = CP.get_global_param_string("FluidsList").split(",")
+    return tuple(names + [a for n in names for a in CP.get_fluid_param_string(n, "aliases").split(",") if a])
+
 
 @functools.lru_cache(maxsize=None)
 def coolprop_fluid_name(name: str) -> str:
@@ -199,9 +207,9 @@ def coolprop_fluid_name(name: str) -> str:
         return BUILTIN_COOLPROP_NAMES[name]
     import CoolProp.CoolProp as CP
 
-    fluids = CP.get_global_param_string("FluidsList").split(",")
-    if any(name == f or name in CP.get_fluid_param_string(f, "aliases").split(",") for f in fluids):
+    if name in coolprop_fluid_names():
         return name
+    fluids = CP.get_global_param_string("FluidsList").split(",")
     same = [f for f in fluids if _formula(CP.get_fluid_param_string(f, "formula")) == name]
     return same[0] if len(same) == 1 else name
 

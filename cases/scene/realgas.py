@@ -1,10 +1,8 @@
 """Scene checks of real-gas cavities and vessel walls (docs/realgas.md)."""
 from __future__ import annotations
 
-import functools
-
 from cavity.realgas_cavity import REAL_GAS_ENERGY_MODELS
-from cavity.species import coolprop_fluid_name
+from cavity.species import coolprop_fluid_name, coolprop_fluid_names
 
 from cases.scene.errors import SceneError
 from cases.scene.schema import suggest
@@ -27,16 +25,6 @@ def _species(gas: dict) -> set:
     return {k for k, v in gas.items() if v > 0}
 
 
-@functools.lru_cache(maxsize=1)
-def _coolprop_fluids() -> tuple:
-    """CoolProp's fluid names and their aliases."""
-    import CoolProp.CoolProp as CP
-
-    names = CP.get_global_param_string("FluidsList").split(",")
-    aliases = [a for n in names for a in CP.get_fluid_param_string(n, "aliases").split(",") if a]
-    return tuple(names + aliases)
-
-
 def _check_gas(scene, gas: dict, where: str, what: str) -> list:
     """The CoolProp names of a real gas's species (one, or a mixture of fixed composition); SceneError at
     ``where`` for a species without one, a name CoolProp does not know (with suggestions) or pseudo-pure Air in
@@ -48,7 +36,7 @@ def _check_gas(scene, gas: dict, where: str, what: str) -> list:
             raise SceneError(scene.path, f"{where}.{sp}", f"{what} holds species with a CoolProp name (N2, He, H2, "
                              "CO2, Ar, O2, Air, or a [[species]] with coolprop = ...)")
     if len(names) > 1:
-        known = _coolprop_fluids()
+        known = coolprop_fluid_names()
         for sp, name in zip(species, names):
             if name not in known:
                 raise SceneError(scene.path, f"{where}.{sp}", f"CoolProp has no fluid {name!r}{suggest(name, known)}")
