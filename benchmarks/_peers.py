@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from _common import Case, Run, best_of, engine_rhs, errors, fresh_state, pressures
-from exchange.orifice import orifice_mass_flow
+from exchange.laws.orifice import orifice_mass_flow
 
 try:  # Cantera is a peer for benchmarks, not a dependency
     import cantera as CANTERA

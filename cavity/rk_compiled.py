@@ -13,12 +13,13 @@ end, or the event time that truncated it), y_old (n), F (7, n) (scipy's ``Dop853
 from __future__ import annotations
 
 import math
+from enum import IntEnum
 
 import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _d
 
-__all__ = ["A", "B", "C", "E3", "E5", "D", "A_EXTRA", "C_EXTRA", "N_STAGES", "DenseSteps", "error_norm",
+__all__ = ["Status", "A", "B", "C", "E3", "E5", "D", "A_EXTRA", "C_EXTRA", "N_STAGES", "DenseSteps", "error_norm",
            "initial_h0", "initial_step", "dense_F", "dense_eval", "step_factor", "SAFETY", "MIN_FACTOR",
            "MAX_FACTOR", "segment_of", "dense_state", "dense_samples"]
 
@@ -32,6 +33,19 @@ D = np.ascontiguousarray(_d.D)
 A_EXTRA = np.ascontiguousarray(_d.A[N_STAGES + 1:])
 C_EXTRA = np.ascontiguousarray(_d.C[N_STAGES + 1:])
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
+
+
+class Status(IntEnum):
+    """How a compiled integration ended."""
+    OK = 0
+    STEP_BUDGET = 1  # more steps than allowed
+    STEP_TOO_SMALL = 2  # the step size fell below the spacing of floating-point numbers
+    RHS_FAILED = 3  # the right-hand side failed (no gas state, a hosted part's exception)
+    NOT_FINITE = 4  # a non-finite state
+    STALLED = 5  # switches kept firing at one instant
+    WALL_BUDGET = 6  # more wall time than allowed
+
+
 ERROR_EXPONENT = -1.0 / 8.0  # −1/(error estimator order + 1)
 RECORD = 3  # floats before y_old in a step record
 
@@ -140,7 +154,7 @@ def dense_eval(rec, n, t, out):
         out[i] = acc + rec[RECORD + i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def segment_of(segs, t):
     """Index of the segment holding t [s]: the last whose start ``segs[:, 2]`` is ≤ t, clipped to the table
     (``np.searchsorted(starts, t, side="right") − 1`` as ``Trajectory.mode_at``)."""
@@ -154,7 +168,7 @@ def segment_of(segs, t):
     return min(max(lo - 1, 0), segs.shape[0] - 1)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def dense_state(recs, segs, i, t, y):
     """State at t [s] on segment i into y (n,): the step of :meth:`DenseSteps.__call__` (``searchsorted(ts, t,
     side="left") − 1`` on ts = [t_min, step ends...], clipped), then its dense output."""

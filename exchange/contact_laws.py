@@ -14,25 +14,66 @@ approach speed −σ_i·v, and the seat pushes the body along σ_i·axis with A_
 from __future__ import annotations
 
 import math
+from enum import IntEnum
 
 import numpy as np
 from numba import njit
 
-__all__ = ["HARD", "LINEAR", "SOFTENED", "NO_DAMPING", "STANDARD", "EXPLICIT", "CRITICAL", "SEAT_PARAMETERS",
+__all__ = ["Overclosure", "Damping", "SeatLaw", "SeatNode", "HARD", "LINEAR", "SOFTENED", "NO_DAMPING", "STANDARD", "EXPLICIT", "CRITICAL", "SEAT_PARAMETERS",
            "TOUCH", "penalty_pressure", "penalty_stiffness", "softened_pressure", "softened_stiffness",
            "damping_coefficient", "critical_damping_coefficient", "seat_node", "seat_force", "seat_nodal",
            "held_side"]
 
-HARD, LINEAR, SOFTENED = 0, 1, 2  # pressure-overclosure law codes
-NO_DAMPING, STANDARD, EXPLICIT, CRITICAL = 0, 1, 2, 3  # damping definition codes
-#: Entries of a seat's parameter vector ``law``.
+class Overclosure(IntEnum):
+    """Pressure-overclosure law of a seat."""
+    HARD = 0
+    LINEAR = 1
+    SOFTENED = 2
+
+
+class Damping(IntEnum):
+    """Contact damping definition of a seat."""
+    NONE = 0
+    STANDARD = 1  # Abaqus/Standard: μ(clearance)
+    EXPLICIT = 2  # μ0 while closed
+    CRITICAL = 3  # a critical damping fraction
+
+
+HARD, LINEAR, SOFTENED = Overclosure.HARD, Overclosure.LINEAR, Overclosure.SOFTENED
+NO_DAMPING, STANDARD, EXPLICIT, CRITICAL = Damping.NONE, Damping.STANDARD, Damping.EXPLICIT, Damping.CRITICAL
+
+
+class SeatLaw(IntEnum):
+    """Entries of a seat's parameter vector ``law``."""
+    KIND = 0  # Overclosure
+    STIFFNESS = 1  # linear: k [Pa/m]; softened: c0 [m]
+    P0 = 2  # softened: p0 [Pa]
+    DAMPING = 3  # Damping
+    MU0 = 4  # [Pa s/m]
+    DAMPING_C0 = 5  # [m]
+    ETA = 6  # [-]
+    CRITICAL_FRACTION = 7  # [-]
+    BODY_MASS = 8  # [kg]
+    SEAT_AREA = 9  # reachable seat area [m^2]
+    SEAT_SIZE = 10  # [m]
+
+
+class SeatNode(IntEnum):
+    """Columns of a seat's node table ``nodes``."""
+    GAP = 0  # g0 [m]
+    SIDE = 1  # σ = ±1
+    AREA = 2  # tributary area [m^2]
+    REACH = 3  # 1 if the body can reach it
+
+
+#: The entries of a seat's parameter vector, in words.
 SEAT_PARAMETERS = ("law", "stiffness or c0 [m]", "p0 [Pa]", "damping", "mu0 [Pa s/m]", "damping c0 [m]", "eta",
                    "critical fraction", "body mass [kg]", "reachable seat area [m^2]", "seat size [m]")
 #: A hard-contact node within this fraction of the seat size of the body counts as closed.
 TOUCH = 1e-7
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def penalty_pressure(h, stiffness):
     r"""Linear (penalty) pressure-overclosure law [Pa].
 
@@ -47,7 +88,7 @@ def penalty_pressure(h, stiffness):
     return stiffness * h if h > 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def penalty_stiffness(h, stiffness):
     """dp/dh of :func:`penalty_pressure` [Pa/m]: k while penetrating, 0 open.
 
@@ -57,7 +98,7 @@ def penalty_stiffness(h, stiffness):
     return stiffness if h > 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def softened_pressure(h, c0, p0):
     r"""Exponential (softened) pressure-overclosure law [Pa].
 
@@ -76,7 +117,7 @@ def softened_pressure(h, c0, p0):
     return p0 / (math.e - 1.0) * x * math.expm1(x) if x > 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def softened_stiffness(h, c0, p0):
     r"""dp/dh of :func:`softened_pressure` [Pa/m].
 
@@ -89,7 +130,7 @@ def softened_stiffness(h, c0, p0):
     return p0 / (c0 * (math.e - 1.0)) * (math.expm1(x) + x * math.exp(x)) if x > 0.0 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def damping_coefficient(clearance, mu0, c0, eta):
     r"""Clearance-dependent viscous damping coefficient of Abaqus/Standard [Pa·s/m].
 
@@ -111,7 +152,7 @@ def damping_coefficient(clearance, mu0, c0, eta):
     return mu0 * (c0 - clearance) / ((1.0 - eta) * c0)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def critical_damping_coefficient(fraction, mass, stiffness):
     r"""Damping coefficient for a critical damping fraction (Abaqus/Explicit) [N·s/m].
 
@@ -127,7 +168,7 @@ def critical_damping_coefficient(fraction, mass, stiffness):
     return fraction * math.sqrt(4.0 * mass * stiffness)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def seat_node(g, v_rel, area, law):
     r"""(pressure [Pa], closed, within the damping clearance) of one seat node with gap ``g`` [m] (overclosure
     −g), approach speed ``v_rel`` [m/s] and tributary area ``area`` [m²]; ``law`` the seat's parameters
@@ -143,26 +184,28 @@ def seat_node(g, v_rel, area, law):
     >>> seat_node(-1e-4, 0.5, 1.0, law)
     (100000.0, True, False)
     """
-    kind, damping = int(law[0]), int(law[3])
+    kind, damping = int(law[SeatLaw.KIND]), int(law[SeatLaw.DAMPING])
+    k_or_c0, p0 = law[SeatLaw.STIFFNESS], law[SeatLaw.P0]
     if kind == HARD:
-        closed, p = g <= TOUCH * law[10], 0.0
+        closed, p = g <= TOUCH * law[SeatLaw.SEAT_SIZE], 0.0
     elif kind == LINEAR:
-        closed, p = g <= 0.0, penalty_pressure(-g, law[1])
+        closed, p = g <= 0.0, penalty_pressure(-g, k_or_c0)
     else:
-        closed, p = g < law[1], softened_pressure(-g, law[1], law[2]) if math.isfinite(g) else 0.0
+        closed, p = g < k_or_c0, softened_pressure(-g, k_or_c0, p0) if math.isfinite(g) else 0.0
     within = False
     if damping == CRITICAL:
         if closed:
-            k = penalty_stiffness(-g, law[1]) if kind == LINEAR else softened_stiffness(-g, law[1], law[2])
-            mu = critical_damping_coefficient(law[7], law[8] * area / law[9], area * k) / area
+            k = penalty_stiffness(-g, k_or_c0) if kind == LINEAR else softened_stiffness(-g, k_or_c0, p0)
+            nodal_mass = law[SeatLaw.BODY_MASS] * area / law[SeatLaw.SEAT_AREA]
+            mu = critical_damping_coefficient(law[SeatLaw.CRITICAL_FRACTION], nodal_mass, area * k) / area
             p += mu * v_rel
     elif damping != NO_DAMPING:
         c = max(g, 0.0) if closed else g
         if damping == EXPLICIT:
-            mu = law[4] if closed and c <= 0.0 else 0.0
+            mu = law[SeatLaw.MU0] if closed and c <= 0.0 else 0.0
         else:
-            mu = damping_coefficient(c, law[4], law[5], law[6])
-            within = not closed and c < law[5]
+            mu = damping_coefficient(c, law[SeatLaw.MU0], law[SeatLaw.DAMPING_C0], law[SeatLaw.ETA])
+            within = not closed and c < law[SeatLaw.DAMPING_C0]
         p += mu * v_rel
     return p, closed, within
 
@@ -181,10 +224,10 @@ def seat_force(s, v, nodes, law):
     """
     force, lost = 0.0, 0.0  # Neumaier's compensated sum: the force at rest on a stiff seat is a small difference
     for i in range(nodes.shape[0]):
-        if nodes[i, 3] != 0.0:
-            sigma = nodes[i, 1]
-            p, _, _ = seat_node(nodes[i, 0] + sigma * s, -sigma * v, nodes[i, 2], law)
-            term = sigma * nodes[i, 2] * p
+        if nodes[i, SeatNode.REACH] != 0.0:
+            sigma, area = nodes[i, SeatNode.SIDE], nodes[i, SeatNode.AREA]
+            p, _, _ = seat_node(nodes[i, SeatNode.GAP] + sigma * s, -sigma * v, area, law)
+            term = sigma * area * p
             total = force + term
             lost += (force - total) + term if abs(force) >= abs(term) else (term - total) + force
             force = total
@@ -200,8 +243,10 @@ def held_side(s, nodes, law):
     -1.0
     """
     for i in range(nodes.shape[0]):
-        if nodes[i, 3] != 0.0 and seat_node(nodes[i, 0] + nodes[i, 1] * s, 0.0, nodes[i, 2], law)[1]:
-            return nodes[i, 1]
+        sigma = nodes[i, SeatNode.SIDE]
+        if nodes[i, SeatNode.REACH] != 0.0 and \
+                seat_node(nodes[i, SeatNode.GAP] + sigma * s, 0.0, nodes[i, SeatNode.AREA], law)[1]:
+            return sigma
     return 0.0
 
 
@@ -219,15 +264,16 @@ def seat_nodal(s, v, reaction, nodes, law):
     p, status = np.zeros(n), np.zeros(n, np.uint8)
     closed_area = 0.0
     for i in range(n):
-        if nodes[i, 3] != 0.0:
-            sigma = nodes[i, 1]
-            pi, closed, within = seat_node(nodes[i, 0] + sigma * s, -sigma * v, nodes[i, 2], law)
+        if nodes[i, SeatNode.REACH] != 0.0:
+            sigma = nodes[i, SeatNode.SIDE]
+            pi, closed, within = seat_node(nodes[i, SeatNode.GAP] + sigma * s, -sigma * v, nodes[i, SeatNode.AREA],
+                                           law)
             if closed:
                 p[i], status[i] = pi, 1
-                closed_area += nodes[i, 2]
+                closed_area += nodes[i, SeatNode.AREA]
             elif within:
                 p[i], status[i] = pi, 2
-    if int(law[0]) == HARD and closed_area > 0.0:
+    if int(law[SeatLaw.KIND]) == HARD and closed_area > 0.0:
         share = reaction / closed_area
         for i in range(n):
             if status[i] == 1:

@@ -1,6 +1,6 @@
 """A network of cavities joined by exchanges: the unknowns of a whole scene's gas, their layout and the discrete
 state, which the compiled engine lowers and integrates (:mod:`exchange.compiled`: its right-hand side, switches and
-events; :mod:`exchange.point_values`: its values at an instant).
+events; :mod:`exchange.readback.values`: its values at an instant).
 
 Unknown vector layout::
 
@@ -21,10 +21,27 @@ import numpy as np
 from .network_lowering import NetworkLowering
 from .vent import GasPoint
 
-__all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
+__all__ = ["Network", "DiscreteState", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
 
 LEDGER_PER_EXCHANGE = 2  # mass, energy
 LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
+
+
+@dataclass(frozen=True)
+class DiscreteState:
+    """The discrete state of a network during one segment (what :meth:`Network.snapshot` returns and a trajectory
+    keeps per segment). Per exchange: whether its pop condition has been met, when its hold started (None: not
+    holding), its area when it opened (DELTA LEAKAGE AREA; None: not yet), whether it is held closed (equalised),
+    whether it closed for good at its close pressure, and the dynamic body's area interval (None: its area does not
+    follow the body); whether hard contact holds the dynamic body on its seat."""
+
+    popped: tuple
+    holding_since: tuple
+    area_at_activation: tuple
+    equalised: tuple
+    closed: tuple
+    intervals: tuple
+    held: bool = False
 
 
 @dataclass
@@ -49,7 +66,7 @@ class Network(NetworkLowering):
     offsets: list = field(init=False)
     ledger_offset: int = field(init=False)
     _ambient_point: GasPoint = field(init=False)
-    _ledger: list = field(init=False)
+    ledger_offsets: list = field(init=False)  # per cavity: its first ledger unknown
     popped: list = field(init=False)  # per exchange: the pop condition has been met (it stays open)
     holding_since: list = field(init=False)  # per exchange: when Δp last rose above the pop pressure, or None
     area_at_activation: list = field(init=False)
@@ -61,7 +78,7 @@ class Network(NetworkLowering):
             k += cav.n_unknowns
         self.ledger_offset = k
         self._ambient_point = self.ambient.point()
-        self._ledger = [self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges) + LEDGER_PER_CAVITY * i
+        self.ledger_offsets = [self.ledger_offset + LEDGER_PER_EXCHANGE * len(self.exchanges) + LEDGER_PER_CAVITY * i
                         for i in range(len(self.cavities))]
         real = any(getattr(c, "kind", "gas") == "realgas" for c in self.cavities)
         #: the unknowns the right-hand side depends on (cavity states; not the ledger), for a Jacobian by
@@ -99,8 +116,8 @@ class Network(NetworkLowering):
         return tuple(pts)
 
     def states(self, t: float, y) -> list:
-        """The :class:`exchange.point_values.GasState` of every cavity at (t, y), from the compiled engine."""
-        from .point_values import cavity_states
+        """The :class:`exchange.readback.values.GasState` of every cavity at (t, y), from the compiled engine."""
+        from .readback.values import cavity_states
 
         return cavity_states(self.engine(), t, y)
 
@@ -117,16 +134,16 @@ class Network(NetworkLowering):
         return all(getattr(self.cavities[i], "kind", "gas") == "gas" for i in (ex.upstream, ex.downstream)
                    if i is not None)
 
-    def snapshot(self) -> tuple:
+    def snapshot(self) -> DiscreteState:
         """The discrete state (for reading results back on a segment)."""
-        return (tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation),
-                tuple(self.equalised), tuple(self.closed))
+        return DiscreteState(tuple(self.popped), tuple(self.holding_since), tuple(self.area_at_activation),
+                             tuple(self.equalised), tuple(self.closed), (None,) * len(self.exchanges))
 
-    def restore(self, mode) -> None:
+    def restore(self, mode: DiscreteState | None) -> None:
         if mode is not None:
-            self.popped, self.holding_since, self.area_at_activation = (list(m) for m in mode[:3])
-            self.equalised = list(mode[3]) if len(mode) > 3 else [False] * len(self.exchanges)
-            self.closed = list(mode[4]) if len(mode) > 4 else [False] * len(self.exchanges)
+            self.popped, self.holding_since = list(mode.popped), list(mode.holding_since)
+            self.area_at_activation = list(mode.area_at_activation)
+            self.equalised, self.closed = list(mode.equalised), list(mode.closed)
 
     def is_plain(self) -> bool:
         """True for a plain :class:`Network` (a subclass lowers itself only through ``lowered_geometry``)."""

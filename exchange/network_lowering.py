@@ -1,4 +1,4 @@
-"""How a cavity network reaches the compiled engine: lowered once and kept, or why it does not lower (a mixin of
+"""How a cavity network reaches the engine: lowered once and kept, or why it does not lower (a mixin of
 :class:`exchange.network.Network`)."""
 from __future__ import annotations
 
@@ -10,13 +10,13 @@ class NetworkLowering:
     the results (``engine``); needs ``gas``, ``cavities``, ``exchanges`` and ``ambient``."""
 
     def compiled_solver(self):
-        """This network lowered to arrays for the compiled engine (:mod:`exchange.compiled`), or None when a part
-        of it is not supported there (:meth:`compiled_unsupported` says which). Built once and kept."""
+        """This network lowered onto the engine (:func:`exchange.engine.lower.lower`), or None when a part of it is
+        not supported there (:meth:`compiled_unsupported` says which). Built once and kept."""
         key = (type(self), self.gas, self.cavities, self.exchanges, self.ambient)
         cached = self.__dict__.get("_compiled")
         if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])) \
                 or not _hosted_here(cached[-1], self):
-            from .compiled import lower
+            from .engine.lower import lower
 
             cached = key + (lower(self),)
             self.__dict__["_compiled"] = cached
@@ -31,7 +31,7 @@ class NetworkLowering:
 
     def compiled_unsupported(self) -> str | None:
         """Why :meth:`compiled_solver` is None (None: it is supported)."""
-        from .compiled import unsupported_reason
+        from .engine.lower import unsupported_reason
 
         return unsupported_reason(self)
 
@@ -41,7 +41,7 @@ def _hosted_here(fast, net) -> bool:
     it was copied or unpickled from): else it is lowered again (:mod:`exchange.hosted`)."""
     if fast is None or fast.host < 0:
         return True
-    from .hosted import HOSTS
+    from .engine.hosted import HOSTS
 
     host = HOSTS.get(fast.host)
     return host is not None and host.network is net

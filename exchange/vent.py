@@ -10,10 +10,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .activation import Activation
-from .laws import OrificeLaw
-from .orifice import critical_pressure_ratio
+from .laws.orifice import OrificeLaw, critical_pressure_ratio
 
-__all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]  # OrificeLaw re-exported from .laws
+__all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]  # OrificeLaw re-exported from .laws.orifice
 
 
 @dataclass(frozen=True)

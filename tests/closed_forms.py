@@ -6,7 +6,7 @@ import math
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from exchange.orifice import choked_flow_factor, orifice_mass_flow
+from exchange.laws.orifice import choked_flow_factor, orifice_mass_flow
 
 R_U = 8.314462618
 

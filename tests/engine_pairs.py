@@ -1,11 +1,11 @@
 """Naive-vs-fast pairs for the one engine (used by the tests of the compiled engine).
 
-- Integrators: the compiled DOP853 (one numba call, :mod:`exchange.compiled_solver`) against scipy's DOP853 stepping
-  the same lowered network (:mod:`exchange.lowered_system`): two implementations of the stepping, the event
+- Integrators: the compiled DOP853 (one numba call, :mod:`exchange.engine.solver`) against scipy's DOP853 stepping
+  the same lowered network (:mod:`exchange.engine.system`): two implementations of the stepping, the event
   location and the restarts, the same kernels.
 - Read-back: the history in one compiled call (:func:`cases.results.readback.history_rows`: compiled dense
   output, discrete state per segment as arrays) against rows built one by one from ``Trajectory.sample`` and the
-  point kernels in each segment's loaded mode (:mod:`exchange.point_values`), and the compiled peak search against
+  point kernels in each segment's loaded mode (:mod:`exchange.readback.values`), and the compiled peak search against
   scipy's bounded search.
 - Right-hand side: the compiled one against :func:`reference_rhs`, assembled here from the cavities' and
   exchanges' Python objects (mixtures, volume models, inflators, flow laws, activation rules and the area tracks
@@ -23,9 +23,9 @@ from cases.results.contact_results import contact_columns, contact_rows
 from cases.results.readback import cavity_peaks, cavity_summary, history_columns, history_rows, refine_peak
 from cavity.integration import integrate
 from cavity.tolerances import R_UNIVERSAL
-from exchange.compiled_kernels import rhs as compiled_rhs
+from exchange.engine.rhs import rhs as compiled_rhs
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
-from exchange.point_values import cavity_states, exchange_values, load_mode
+from exchange.readback.values import cavity_states, exchange_values, load_mode
 from exchange.vent import GasPoint
 from cavity.hydraulic import hydraulic_pressure
 
@@ -74,6 +74,9 @@ def pointwise_history(model, traj, times) -> np.ndarray:
             row += [s.pressure, s.temperature, s.mass, s.volume]
         for mdot, area in zip(*exchange_values(fast, t, y)):
             row += [mdot, area]
+        for cav in net.cavities:  # the inflators' own Python methods: the engine's kernel against them
+            for inf in cav.inflators:
+                row += [inf.mass_flow(t), inf.temperature(t)]
         rows.append(row + [y[k] for k in walls])
     load_mode(fast, traj.modes[-1])
     out = np.array(rows)
@@ -118,12 +121,11 @@ def assert_same_on_both_integrators(model, events_expected=None, rtol=1e-12, ste
     # constant): the error estimate is then round-off (docs/benchmarks.md, section 1)
     assert abs(fast_traj.stats["steps"] - slow_traj.stats["steps"]) <= steps
     assert len(fast_traj.modes) == len(slow_traj.modes)
-    for fast_mode, slow_mode in zip(fast_traj.modes, slow_traj.modes):
-        f, s = _plain(fast_mode), _plain(slow_mode)
-        assert (f[0], f[2], f[3]) == (s[0], s[2], s[3])
-        assert [h is None for h in f[1]] == [h is None for h in s[1]]
-        np.testing.assert_allclose([h for h in f[1] if h is not None], [h for h in s[1] if h is not None],
-                                   rtol=event_rtol)
+    for f, s in zip(fast_traj.modes, slow_traj.modes):
+        assert (f.popped, f.area_at_activation, f.equalised) == (s.popped, s.area_at_activation, s.equalised)
+        assert [h is None for h in f.holding_since] == [h is None for h in s.holding_since]
+        np.testing.assert_allclose([h for h in f.holding_since if h is not None],
+                                   [h for h in s.holding_since if h is not None], rtol=event_rtol)
     # at an event time the two agree to the last bit, both read the same side of the switch; where round-off
     # parts them (by ~1e-16 s) a row at one integrator's event time would read the two sides of it
     same = [t for (t, _), (tf, _) in zip(slow_traj.events, fast_traj.events) if t == tf]
@@ -133,11 +135,6 @@ def assert_same_on_both_integrators(model, events_expected=None, rtol=1e-12, ste
         scale = np.max(np.abs(slow[:, k]))
         np.testing.assert_allclose(fast[:, k], slow[:, k], rtol=rtol, atol=rtol * scale, err_msg=name)
     return fast_traj
-
-
-def _plain(mode):
-    """The plain network's part of a mode (a scene network's is (mode, intervals, held))."""
-    return mode[0] if len(mode) == 3 else mode
 
 
 # ---- the right-hand side assembled naively from the Python objects
@@ -164,23 +161,23 @@ def _gas_point(net, cav, t, y, k):
 
 
 def _area(net, j, t, mode):
-    """Exchange j's flow area [m^2] at t in ``mode`` (popped, hold, area at activation, equalised, closed)."""
+    """Exchange j's flow area [m^2] at t in ``mode`` (a DiscreteState)."""
     ex, act = net.exchanges[j], net.exchanges[j].activation
     ga = net.areas[j] if getattr(net, "areas", None) else None
     area = ga.track(t) if ga is not None else ex.area  # the blockage geometry's area track (by time)
     if act is None:
         return area
-    if not (act.open_time <= t < act.close_time) or (act.pop_pressure is not None and not mode[0][j]) \
-            or (len(mode) > 4 and mode[4][j]):
+    if not (act.open_time <= t < act.close_time) or (act.pop_pressure is not None and not mode.popped[j]) \
+            or mode.closed[j]:
         return 0.0
     a = act.amplitude(t) if act.amplitude is not None else 1.0
-    return a * (max(area - (mode[2][j] or 0.0), 0.0) if act.delta_area else area)
+    return a * (max(area - (mode.area_at_activation[j] or 0.0), 0.0) if act.delta_area else area)
 
 
 def _flow(net, j, t, points, mode):
     ex = net.exchanges[j]
     area = _area(net, j, t, mode)
-    if area <= 0.0 or mode[3][j]:
+    if area <= 0.0 or mode.equalised[j]:
         return 0.0, None
     a = points[ex.upstream]
     b = net.ambient.point() if ex.downstream is None else points[ex.downstream]
@@ -196,7 +193,6 @@ def _flow(net, j, t, points, mode):
 def reference_rhs(net, t, y, mode) -> np.ndarray:
     """d(unknowns)/dt of an ideal-gas or hydraulic network without a dynamic body, in ``mode``."""
     assert getattr(net, "body", None) is None
-    mode = _plain(mode)
     dy = np.zeros_like(y)
     states = [_gas_point(net, c, t, y, k) for c, k in zip(net.cavities, net.offsets)]
     points = [s[0] for s in states]

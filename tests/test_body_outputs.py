@@ -6,7 +6,7 @@ from scipy.integrate import cumulative_simpson
 from cases.model.build import build_model
 from cases.run.runner import run
 from cases.scene.files import load_scene
-from exchange.point_values import body_values, load_mode
+from exchange.readback.values import body_values, load_mode
 from tests.conftest import ROOT
 
 

@@ -13,7 +13,7 @@ import pytest
 import ventsim
 from cases import cli
 from cavity.integration import integrate
-from exchange.compiled import _announce_compilation
+from exchange.engine.engine import _announce_compilation
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "cases/verification/blowdown_choked.toml"
@@ -74,7 +74,7 @@ def test_a_message_before_numba_compiles(tmp_path, monkeypatch):
     missing = SimpleNamespace(signatures=[], _cache=SimpleNamespace(_cache_file=SimpleNamespace(
         _index_path=str(tmp_path / "solve.nbi"))))
     _announce_compilation(missing)
-    assert len(said) == 1 and "compiling the compiled network path with numba" in said[0]
+    assert len(said) == 1 and "compiling the engine with numba" in said[0]
     (tmp_path / "solve.nbi").write_bytes(b"")
     _announce_compilation(missing)  # cached on disk: nothing to say
     _announce_compilation(SimpleNamespace(signatures=["compiled"]))  # compiled in this process

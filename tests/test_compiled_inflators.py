@@ -22,7 +22,7 @@ from cases.scene.files import scene_from_dict
 from cavity.caution import VentsimWarning
 from cavity.integration import integrate
 from cavity.inflator_orifice import GAMMA_ITERATIONS, dual_pressure_state, pressure_mass_state
-from exchange.orifice import choked_flow_factor
+from exchange.laws.orifice import choked_flow_factor
 from tests.scenes import tank
 from tests.engine_pairs import assert_rhs_matches_reference as assert_same_rhs, both_integrators
 
@@ -92,7 +92,7 @@ def test_orifice_inflators_deliver_the_reference_mass_and_enthalpy_compiled(tmp_
     inf, end = net.cavities[0].inflators[0], model.scene.time.end
     traj = integrate(net, net.initial_state(), 0.0, end, model.options)
     assert traj.path == "compiled"
-    c = net._ledger[0]
+    c = net.ledger_offsets[0]
     mass, enthalpy = traj(end)[c:c + 2]
     pts = sorted({0.0, end, *[b for b in inf.breakpoints if 0.0 < b < end]})
 

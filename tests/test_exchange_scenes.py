@@ -122,7 +122,7 @@ def test_time_window_and_amplitude(tmp_path):
 
 def test_table_law_reproduces_the_orifice_law_within_interpolation_error(tmp_path):
     """Isothermal blowdown: a mass-rate table sampled from the orifice law at 300 K follows the orifice run."""
-    from exchange.orifice import orifice_mass_flow
+    from exchange.laws.orifice import orifice_mass_flow
 
     dp = np.concatenate([[0.0], np.geomspace(1.0, 4e5, 400)])
     flux = [orifice_mass_flow(1e5 + d, 300.0, 1e5, R_N2, GAMMA, 1.0) for d in dp]

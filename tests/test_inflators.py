@@ -6,7 +6,7 @@ import numpy as np
 from cases.model.build import build_model
 from cases.run.runner import run
 from cases.scene.files import scene_from_dict
-from exchange.orifice import choked_flow_factor
+from exchange.laws.orifice import choked_flow_factor
 from tests.scenes import tank
 
 R_U, M, CP = 8.314462618, 0.0280134, 29.100619163

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from cases.results.readback import refine_peak
-from exchange.compiled_peak import EDGE_PROBE
+from exchange.readback.peaks import EDGE_PROBE
 
 
 class Counted:

@@ -19,10 +19,7 @@ from cavity.species import Species, builtin_species, species_from_coolprop
 from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, SeriesVolume, TableVolume, closed_mesh_volume
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
 from exchange.activation import Activation
-from exchange.discharge import DischargeTable
-from exchange.laws import (BulkViscosityLaw, FabricLeakageLaw, FluxLaw, GraefeLaw, LeakageTableLaw,
-                           LinearResistanceLaw, OrificeLaw)
-from exchange.leakage_table import LeakageTable
+from exchange.laws import registry
 from exchange.vent import Ambient, Exchange
 
 from cases.model.build_geometry import (Driver, build_bodies, build_contact, build_leak_area, build_wrapped_volume, cavity_mesh,
@@ -273,30 +270,20 @@ def _exchange(scene: Scene, i: int, names: list) -> Exchange:
 
 
 def _law_key(law: str) -> str:
-    return {"mass_rate_leakage": "leakage_table", "volume_rate_leakage": "leakage_table",
-            "orifice": "discharge_coefficient", "fabric_leakage": "discharge_coefficient"}.get(law, "law")
+    """The scene key a law's construction error is about: its first key, else ``law``."""
+    keys = registry.spec_of_name(law).keys
+    return keys[0].name if keys else "law"
 
 
 def _law(scene: Scene, e, where: str):
-    """The flow-law object of an exchange spec."""
-    cd = e.discharge_coefficient
-    if not isinstance(cd, float):  # a Table read from CSV
-        cd = DischargeTable(cd.x, cd.y, e.discharge_coefficient_of)
-    if e.law == "orifice":
-        return OrificeLaw(cd)
-    if e.law == "fabric_leakage":
-        return FabricLeakageLaw(cd, e.open_fraction)
-    if e.law == "graefe":
-        return GraefeLaw(e.flc, e.fac)
-    if e.law in ("mass_rate_leakage", "volume_rate_leakage"):
-        t = read_table(scene.base / e.leakage_table, scene.path, f"{where}.leakage_table", "leakage")
-        kind = "mass" if e.law == "mass_rate_leakage" else "volume"
-        return LeakageTableLaw(LeakageTable(t.x, t.y, kind, e.leakage_table_extrapolation))
-    if e.law in ("mass_flux", "volume_flux"):
-        return FluxLaw(e.law.split("_")[0], e.flux, e.flux_amplitude)
-    if e.law == "bulk_viscosity":
-        return BulkViscosityLaw(e.viscous_resistance, e.hydrodynamic_resistance)
-    return LinearResistanceLaw(e.conductance)
+    """The flow-law object of an exchange spec: its registry entry built from the spec's values of the law's keys
+    (:mod:`exchange.laws.registry`)."""
+    spec = registry.spec_of_name(e.law)
+
+    def table(key, what):
+        return read_table(scene.base / getattr(e, key), scene.path, f"{where}.{key}", what)
+
+    return spec.build(e.law, {k.name: getattr(e, k.name) for k in spec.keys}, table)
 
 
 def _scales(network: Network, t_end: float) -> np.ndarray:

@@ -12,8 +12,8 @@ from cavity.realgas_mixture import check_single_phase
 from cavity.tables import Table
 from cavity.realgas_cavity import RealGasCavity
 from cavity.wall import Wall
-from exchange.laws import OrificeLaw
-from exchange.realgas_orifice import RealGasOrificeLaw
+from exchange.laws.orifice import OrificeLaw
+from exchange.laws.realgas_orifice import RealGasOrificeLaw
 
 from cases.scene.errors import SceneError
 from cases.scene.realgas import coolprop_name

@@ -48,11 +48,3 @@ class GeometricAreas:
         return (float(self.body_offset), m.mass, m.gravity, -1 if self.pushed is None else self.pushed,
                 -1 if f.cavity is None else f.cavity, f.area, f.stiffness, f.preload,
                 max(abs(m.initial_velocity), 1e-3), REDERIVE_SLACK * span)
-
-    def wrap_mode(self, mode, intervals=None, held=False):
-        """A plain network's snapshot (from the compiled path) as this network's."""
-        if intervals is None:
-            return mode, tuple(self.intervals), held
-        by_s = [ga is not None and not ga.by_time for ga in self.areas] if self.areas else [False] * len(intervals)
-        return mode, tuple(int(i) if s else None for i, s in zip(intervals, by_s)), held
-

@@ -14,11 +14,11 @@ contact is perfectly plastic). Penalty and softened contact add switches at the 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from exchange.network import Network
+from exchange.network import DiscreteState, Network
 
 from cases.model.scene_areas import GeometricAreas
 from cases.model.scene_seat import SeatModes
@@ -118,13 +118,13 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
             return ga.track(t)
         return ga.track.area_in(self.intervals[index], self.body_state.s)
 
-    def snapshot(self):
-        return super().snapshot(), tuple(self.intervals), self.held
+    def snapshot(self) -> DiscreteState:
+        return replace(super().snapshot(), intervals=tuple(self.intervals), held=self.held)
 
-    def restore(self, mode):
+    def restore(self, mode: DiscreteState | None) -> None:
         if mode is not None:
-            super().restore(mode[0])
-            self.intervals, self.held = list(mode[1]), mode[2]
+            super().restore(mode)
+            self.intervals, self.held = list(mode.intervals), mode.held
 
     def describe(self, t, y):
         text = super().describe(t, y)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
-from exchange.point_values import body_values
+from exchange.readback.values import body_values
 
 __all__ = ["SeatModes"]
 
@@ -17,7 +17,7 @@ class SeatModes:
 
     def body_forces(self, t, y) -> tuple:
         """(gas force, acceleration, reaction of a hard seat holding it at rest, gas and spring force) of the
-        dynamic body at (t, y) [N, m/s^2, N, N], from the compiled engine (:func:`exchange.point_values.
+        dynamic body at (t, y) [N, m/s^2, N, N], from the compiled engine (:func:`exchange.readback.values.
         body_values`) in the network's current discrete state."""
         fast = self.engine()
         fast.load_discrete_state()
@@ -70,7 +70,7 @@ class SeatModes:
         k, c = self.body_offset, self.contact
         for t, label, before, after, mode in events:
             kind = label.rpartition(":")[2]
-            if kind == "seat" and mode[2]:
+            if kind == "seat" and mode.held:
                 self.contact_log.append((t, "lift-off", 0.0, self._pressure(t, before)))
             elif kind == "seat":
                 reach = np.flatnonzero(c.reach)

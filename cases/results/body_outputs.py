@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from exchange.point_values import body_values, load_mode
+from exchange.readback.values import body_values, load_mode
 
 __all__ = ["body_columns"]
 

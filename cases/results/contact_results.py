@@ -14,7 +14,7 @@ import numpy as np
 
 from cavity.integration import SolverError
 from exchange.contact import suggest_mu0
-from exchange.point_values import body_values, load_mode
+from exchange.readback.values import body_values, load_mode
 from cases.model.seat_contact import STATUS_CODES
 
 __all__ = ["contact_columns", "contact_rows", "nodal_history", "contact_summary", "nodal_state"]
@@ -30,7 +30,7 @@ def contact_columns(model) -> list:
 
 def nodal_state(fast, t, y):
     """(CPRESS per node, status per node, seat force on the body [N]) at (t, y) in the discrete state loaded in
-    ``fast``, the network's :class:`exchange.compiled.CompiledNetwork` (:func:`exchange.point_values.load_mode`)."""
+    ``fast``, the network's :class:`exchange.compiled.CompiledNetwork` (:func:`exchange.readback.values.load_mode`)."""
     net = fast.network
     c, k = net.contact, net.body_offset
     reaction = body_values(fast, t, y)[2] if net.held else 0.0

@@ -1,5 +1,6 @@
-"""The columns of history.csv an engineer expects beyond the state: gauge pressure, inflator mass flow and
-temperature, and the blocked fraction of every exchange, each placed beside the column it explains."""
+"""The columns of history.csv an engineer expects beyond the state: gauge pressure and the blocked fraction of every
+exchange, each placed beside the column it explains, and each inflator's mass flow and temperature (read back by the
+engine) moved beside its cavity's volume."""
 from __future__ import annotations
 
 import numpy as np
@@ -22,20 +23,21 @@ def _blocked_fraction(model, trajectory, j: int, times) -> np.ndarray:
     return out
 
 
-def _extra(model, trajectory, name: str, times) -> list:
+def _inflator_columns(cav) -> list:
+    return [f"{cav.name}.{inf.name}.{q}" for inf in getattr(cav, "inflators", ())
+            for q in ("mass_flow [kg/s]", "temperature [K]")]
+
+
+def _extra(model, trajectory, name: str, times, history, index) -> list:
     """[(column, values)] to place right after column ``name`` (full name with unit)."""
     net = model.network
     cavities = {f"{c.name}.pressure [Pa]": c for c in net.cavities}
     volumes = {f"{c.name}.volume [m^3]": c for c in net.cavities}
     areas = {f"{e.name}.area [m^2]": j for j, e in enumerate(net.exchanges)}
     if name in cavities:
-        return [(f"{cavities[name].name}.gauge_pressure [Pa]", None)]  # filled from the pressure column
+        return [(f"{cavities[name].name}.gauge_pressure [Pa]", history[:, index[name]] - net.ambient.pressure)]
     if name in volumes:
-        cav, out = volumes[name], []
-        for inf in getattr(cav, "inflators", ()):
-            out.append((f"{cav.name}.{inf.name}.mass_flow [kg/s]", np.array([inf.mass_flow(t) for t in times])))
-            out.append((f"{cav.name}.{inf.name}.temperature [K]", np.array([inf.temperature(t) for t in times])))
-        return out
+        return [(col, history[:, index[col]]) for col in _inflator_columns(volumes[name])]
     if name in areas:
         j = areas[name]
         return [(f"{net.exchanges[j].name}.blocked_fraction [-]", _blocked_fraction(model, trajectory, j, times))]
@@ -44,15 +46,18 @@ def _extra(model, trajectory, name: str, times) -> list:
 
 def engineering_columns(model, trajectory, columns: list, history: np.ndarray) -> tuple[list, np.ndarray]:
     """``columns`` and ``history`` with, per cavity, ``<cavity>.gauge_pressure [Pa]`` (p − p_ambient) after its
-    pressure and per inflator ``<cavity>.<inflator>.mass_flow [kg/s]`` and ``.temperature [K]`` after its volume;
-    per exchange ``<exchange>.blocked_fraction [-]`` after its area."""
+    pressure and its inflators' ``<cavity>.<inflator>.mass_flow [kg/s]`` and ``.temperature [K]`` moved after its
+    volume; per exchange ``<exchange>.blocked_fraction [-]`` after its area."""
     times = history[:, 0]
-    p_ambient = model.network.ambient.pressure
+    index = {name: i for i, name in enumerate(columns)}
+    moved = {col for c in model.network.cavities for col in _inflator_columns(c)}
     names, values = [], []
     for i, name in enumerate(columns):
+        if name in moved:
+            continue
         names.append(name)
         values.append(history[:, i])
-        for extra, v in _extra(model, trajectory, name, times):
+        for extra, v in _extra(model, trajectory, name, times, history, index):
             names.append(extra)
-            values.append(history[:, i] - p_ambient if v is None else v)
+            values.append(v)
     return names, np.column_stack(values) if values else history

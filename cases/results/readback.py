@@ -1,6 +1,6 @@
 """A run read back from its trajectory: the history rows at the output times, each cavity's peak pressure and its
-final state, on the compiled engine's kernels (:mod:`exchange.compiled_history`, :mod:`exchange.compiled_peak`,
-:mod:`exchange.point_values`)."""
+final state, on the engine's kernels (:mod:`exchange.readback.history`, :mod:`exchange.readback.peaks`,
+:mod:`exchange.readback.values`)."""
 from __future__ import annotations
 
 import math
@@ -11,9 +11,9 @@ from scipy.optimize import minimize_scalar
 
 from cavity.caution import VentsimWarning
 from cavity.integration import Trajectory
-from exchange.compiled_history import history
-from exchange.compiled_peak import EDGE_PROBE, peaks
-from exchange.point_values import cavity_states
+from exchange.readback.history import history
+from exchange.readback.peaks import EDGE_PROBE, peaks
+from exchange.readback.values import cavity_states
 
 from cases.results.contact_results import contact_columns, contact_rows
 
@@ -21,14 +21,18 @@ __all__ = ["history_columns", "history_rows", "peak_candidates", "refine_peak", 
 
 
 def history_columns(model) -> list:
-    """Names (with units) of the history columns: time, per cavity p, T, m, V, per exchange flow and area, each
-    real-gas wall's inner (and, layered, outer) temperature, then the contact columns."""
+    """Names (with units) of the history columns: time, per cavity p, T, m, V, per exchange flow and area, per
+    inflator its mass flow and temperature, each real-gas wall's inner (and, layered, outer) temperature, then the
+    contact columns (the row layout of :class:`exchange.readback.history.HistoryLayout`)."""
     cols = ["time [s]"]
     for c in model.network.cavities:
         cols += [f"{c.name}.pressure [Pa]", f"{c.name}.temperature [K]", f"{c.name}.mass [kg]",
                  f"{c.name}.volume [m^3]"]
     for e in model.network.exchanges:
         cols += [f"{e.name}.mass_flow [kg/s]", f"{e.name}.area [m^2]"]
+    for c in model.network.cavities:
+        for inf in c.inflators:
+            cols += [f"{c.name}.{inf.name}.mass_flow [kg/s]", f"{c.name}.{inf.name}.temperature [K]"]
     return cols + [name for name, _ in _wall_columns(model.network)] + contact_columns(model)
 
 
@@ -48,7 +52,7 @@ def _wall_columns(net) -> list:
 
 def history_rows(model, traj: Trajectory, times, deadline: float = math.inf) -> np.ndarray:
     """The history at ``times`` [s] (columns of :func:`history_columns`): one compiled call
-    (:func:`exchange.compiled_history.history`), then the contact columns (stopping with a SolverError once
+    (:func:`exchange.readback.history.history`), then the contact columns (stopping with a SolverError once
     ``time.perf_counter()`` passes ``deadline``). A temperature that could not be solved at an output time is
     warned about (the row holds the previous row's)."""
     fast = model.network.compiled_solver()
@@ -70,7 +74,7 @@ def refine_peak(ts: np.ndarray, ps: np.ndarray, pressure) -> tuple[float, float]
     """Largest pressure [Pa] and its time [s]: the largest of ``ps`` at ``ts``, refined between its neighbours
     by a bounded scalar search on ``pressure(t)`` [Pa]; at the first or last of ``ts`` only when the pressure a
     fraction ``EDGE_PROBE`` of the step inside is larger, else that end is the peak (one evaluation instead of the
-    search's ~60 golden sections towards the bound) (:func:`exchange.compiled_peak.peak_pressures` does the
+    search's ~60 golden sections towards the bound) (:func:`exchange.readback.peaks.peak_pressures` does the
     same search compiled on the compiled DOP853's records)."""
     k = int(np.argmax(ps))
     best = (float(ps[k]), float(ts[k]))

@@ -67,7 +67,7 @@ def contact_arrays(results, j: int, t: float):
     if contact is None or contact.exchange != j:
         return None, None
     from cases.results.contact_results import nodal_state
-    from exchange.point_values import load_mode
+    from exchange.readback.values import load_mode
 
     fast = results.model.network.engine()
     load_mode(fast, results.trajectory.mode_at(t))

@@ -160,9 +160,9 @@ def blockage_summary(model: Model, traj: Trajectory, history: np.ndarray) -> dic
         else:
             times, idx = [], []  # the interval each segment used (a switch or a re-derivation changed it)
             for seg, mode in zip(traj.segments, traj.modes):
-                if mode is not None and (not idx or mode[1][j] != idx[-1]):
+                if mode is not None and (not idx or mode.intervals[j] != idx[-1]):
                     times.append(float(seg.t_min))
-                    idx.append(mode[1][j])
+                    idx.append(mode.intervals[j])
             areas, actives = track.areas[idx], np.array(track.actives)[idx]
             times = np.array(times)
             k = int(np.argmin(areas))

@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from exchange.bulk_viscosity import (
+from exchange.laws.bulk_viscosity import (
     bulk_viscosity_mass_flow,
     bulk_viscosity_pressure_drop,
     linear_resistance_conductance,
-    linear_resistance_mass_flow,
 )
-from exchange.fabric import graefe_mass_flow
+from exchange.laws.graefe import graefe_mass_flow
+from exchange.laws.linear_resistance import linear_resistance_mass_flow
 
 RHO = 1.2        # kg/m^3
 AREA = 0.01      # m^2

@@ -3,17 +3,15 @@ import math
 
 import pytest
 
-from exchange.bulk_viscosity import (
-    bulk_viscosity_mass_flow,
-    linear_resistance_mass_flow,
-)
-from exchange.fabric import (
+from exchange.laws.bulk_viscosity import bulk_viscosity_mass_flow
+from exchange.laws.linear_resistance import linear_resistance_mass_flow
+from exchange.laws.fabric import (
     anagonye_wang_mass_flow,
     fabric_leakage_mass_flow,
-    graefe_mass_flow,
     wang_nefske_mass_flow,
 )
-from exchange.leakage_table import LeakageTable, leakage_table_mass_flow
+from exchange.laws.graefe import graefe_mass_flow
+from exchange.laws.leakage_table import LeakageTable, leakage_table_mass_flow
 
 P = 1.0e5
 T0, R_AIR, GAMMA_AIR, RHO = 300.0, 287.0, 1.4, 1.16

@@ -3,15 +3,14 @@ import math
 
 import pytest
 
-from exchange.fabric import (
+from exchange.laws.fabric import (
     anagonye_wang_area_factor,
     anagonye_wang_mass_flow,
     fabric_leakage_mass_flow,
-    graefe_mass_flow,
-    graefe_velocity,
     wang_nefske_mass_flow,
 )
-from exchange.orifice import (
+from exchange.laws.graefe import graefe_mass_flow, graefe_velocity
+from exchange.laws.orifice import (
     choked_flow_factor,
     critical_pressure_ratio,
     orifice_mass_flow,

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from exchange.discharge import DischargeTable, discharge_coefficient
-from exchange.flux import mass_flux_mass_flow, volume_flux_mass_flow
+from exchange.laws.discharge import DischargeTable, discharge_coefficient
+from exchange.laws.flux import mass_flux_mass_flow, volume_flux_mass_flow
 
 # ---------------------------------------------------------------- flux
 

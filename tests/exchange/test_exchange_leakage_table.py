@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from exchange.leakage_table import LeakageTable, leakage_table_mass_flow
-from exchange.orifice import orifice_mass_flow
+from exchange.laws.leakage_table import LeakageTable, leakage_table_mass_flow
+from exchange.laws.orifice import orifice_mass_flow
 
 P_DOWN = 1.0e5   # Pa
 T0 = 300.0       # K

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from exchange.orifice import orifice_mass_flow
+from exchange.laws.orifice import orifice_mass_flow
 from hard_scenes import GAMMA, MONOTONE_RTOL, P_AMB, R_N2, check_sane, run_scene, series, tank
 
 

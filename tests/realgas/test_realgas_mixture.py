@@ -15,7 +15,7 @@ from scipy.optimize import brentq, minimize_scalar
 from cavity.realgas import RealFluid
 from cavity.realgas_cavity import RealGasCavity
 from cavity.volume import FixedVolume
-from exchange.realgas_orifice import real_gas_critical_state, real_gas_mass_flux
+from exchange.laws.realgas_orifice import real_gas_critical_state, real_gas_mass_flux
 
 MIXTURES = [("Nitrogen&Argon", (0.8, 0.2)), ("Helium&Argon", (0.5, 0.5))]  # mole fractions
 

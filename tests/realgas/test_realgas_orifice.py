@@ -9,8 +9,8 @@ from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 
 from cavity.realgas import IdealGasFluid, RealFluid
-from exchange.orifice import LINEAR_BELOW, orifice_mass_flow
-from exchange.realgas_orifice import RealGasOrificeLaw, real_gas_critical_state, real_gas_mass_flux
+from exchange.laws.orifice import LINEAR_BELOW, orifice_mass_flow
+from exchange.laws.realgas_orifice import RealGasOrificeLaw, real_gas_critical_state, real_gas_mass_flux
 from exchange.vent import GasPoint
 
 

@@ -94,7 +94,7 @@ def test_n2_blowdown_against_the_measurement(n2_run):
                                                       ("DOP853", "scipy", "compiled, solve_ivp"),
                                                       ("DOP853", "compiled", "compiled")])
 def test_real_gas_runs_on_the_engine(n2_run, method, integrator, path):
-    """The N2 discharge (real-gas cavity, wall, real-gas nozzle: hosted parts, exchange/hosted.py) lowers and runs
+    """The N2 discharge (real-gas cavity, wall, real-gas nozzle: hosted parts, exchange/engine/hosted.py) lowers and runs
     on every integrator; at rtol 1e-8 each history is within 1e-6 of the compiled DOP853's at rtol 1e-10,
     relative to each column's scale."""
     model = n2_run.model
@@ -265,12 +265,12 @@ def test_a_stage_outside_the_gas_states_shortens_the_step(filling_run):
 
 
 def test_a_copied_network_hosts_its_own_parts(n2_run):
-    """The hosted parts are registered per network (exchange/hosted.py): a copy of a lowered real-gas network
+    """The hosted parts are registered per network (exchange/engine/hosted.py): a copy of a lowered real-gas network
     (sharing its cached lowering) is lowered again for itself, and the registration goes with its network."""
     import copy
     import gc
 
-    from exchange.hosted import HOSTS
+    from exchange.engine.hosted import HOSTS
 
     net = n2_run.model.network
     fast = net.compiled_solver()

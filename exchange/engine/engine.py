@@ -1,0 +1,196 @@
+"""A lowered network on the engine: its model, switch labels and network, and what the integrators ask of it (a whole
+compiled DOP853 run, the system scipy's methods step, the switches already past their threshold at the start, the
+discrete state loaded into the model and read back per segment as the network's :class:`~exchange.network.
+DiscreteState`)."""
+from __future__ import annotations
+
+import logging
+import math
+import os
+
+import numpy as np
+
+from cavity.integration import NO_TEMPERATURE
+from exchange.network import DiscreteState
+
+from .hosted import host_of
+from .inflators import warn_clamped
+from .layout import (UNLOCKED, AreaKind, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState, SegmentColumn,
+                     SwitchKind, segment_blocks)
+
+__all__ = ["Engine"]
+
+
+class Engine:
+    """A network lowered onto the engine (:func:`exchange.engine.lower.lower`).
+
+    ``model`` the numba Model, ``arrays`` its arrays on the Python side (:class:`~exchange.engine.layout.ModelArrays`),
+    ``labels`` each switch's label, ``T_initial`` the cavities' initial temperatures [K], ``network`` the network,
+    ``host`` its id in :mod:`exchange.engine.hosted` (−1: no hosted parts)."""
+
+    def __init__(self, model, arrays, labels, T_initial, network, host: int = -1):
+        self.model, self.arrays, self.labels, self.T_initial = model, arrays, labels, T_initial
+        self.network, self.host = network, host
+        self._modes, self._run_modes = {}, []
+
+    @property
+    def kinds(self) -> np.ndarray:
+        return self.arrays.switch_kind
+
+    def run(self, y0, t0: float, stops, rtol: float, atol, max_step: float, max_steps: int, near: float,
+            deadline: float = math.inf):
+        """The whole integration in one call of :func:`exchange.engine.solver.solve` from the network's current
+        discrete state; returns its tuple (see there), its segment table cut to five columns, the last an index for
+        :meth:`segment_mode`."""
+        from .solver import solve
+
+        _announce_compilation(solve)
+        a, net = self.arrays, self.network
+        a.temperature_guess[:] = self.T_initial  # Newton's first guesses, as Network.reset()
+        if self.host >= 0:
+            host_of(self.host).error = None
+        self.load_discrete_state()
+        y0 = np.ascontiguousarray(y0, dtype=float)
+        atol = np.array(np.broadcast_to(np.asarray(atol, dtype=float), y0.shape))  # writable: one specialisation
+        out = solve(self.model, y0, float(t0), np.array(stops, dtype=float), float(rtol), atol, float(max_step),
+                    int(max_steps), float(near), float(deadline))
+        self.unlock_pieces()
+        warn_clamped(net, a.inflator_int)
+        segs = out[4]
+        self._run_modes = self._modes_of(segs)
+        if getattr(net, "contact", None) is not None:
+            from .events import event_states
+
+            net.log_contact_events(event_states(out, self.labels, self._run_modes))
+        table = segs[:, :SegmentColumn.EQUALISED + 1].copy()
+        table[:, SegmentColumn.EQUALISED] = np.arange(len(segs))
+        return out[:4] + (table,) + out[5:]
+
+    def unlock_pieces(self) -> None:
+        """Volume splines read on the piece that holds s (outputs, after a run)."""
+        self.arrays.cavity_int[:, CavityInt.PIECE] = UNLOCKED
+
+    def solve_ivp_system(self, near: float):
+        """This network as the system scipy's other methods integrate (:class:`exchange.engine.system.
+        LoweredSystem`), from the network's current discrete state."""
+        from .system import LoweredSystem
+
+        return LoweredSystem(self, near)
+
+    def arm(self, t0: float, y0) -> list:
+        """From the network's discrete state, every pop vent already above its pop pressure at t0 starts its hold (or
+        pops) now, as if its pressure had just crossed it, and every exchange whose downstream cavity is already at
+        its close pressure closes; the network takes the new state. Returns their switch labels (for the event
+        log)."""
+        from .modes import on_event
+        from .switches import switches
+
+        self.load_discrete_state()
+        a, labels, value = self.arrays, [], np.empty(1)
+        y0 = np.ascontiguousarray(y0, dtype=float)
+        for q in np.flatnonzero((a.switch_kind == SwitchKind.POP) | (a.switch_kind == SwitchKind.CLOSE)):
+            j, close = int(a.switch_target[q]), a.switch_kind[q] == SwitchKind.CLOSE
+            armed = OpenState.OPEN if close else OpenState.SHUT
+            if a.open_state[j] != armed or not math.isnan(a.hold_start[j]):
+                continue
+            switches(self.model, np.array([q]), float(t0), y0, math.inf, value)
+            if value[0] >= 0.0 if close else value[0] > 0.0:
+                on_event(self.model, int(q), float(t0), y0.copy(), math.inf)
+                labels.append(self.labels[q])
+        if labels:
+            self.network.restore(self.current_mode(t0))
+        return labels
+
+    def current_mode(self, t_min: float) -> DiscreteState:
+        """The network's snapshot of the discrete state now in the model, for a segment from t_min [s]."""
+        from .modes import record_segment
+
+        row = np.empty((1, segment_blocks(self.arrays.open_state.size)[4]))
+        bits = sum(1 << j for j, e in enumerate(self.arrays.equalised.tolist()) if e)
+        record_segment(self.model, row, 0, 0, 0, float(t_min), float(t_min), bits)
+        return self._modes_of(row)[0]
+
+    def failure(self) -> str:
+        """Why the latest right-hand side failed: a hosted part's exception (:mod:`exchange.engine.hosted`), else no
+        temperature for a cavity's internal energy."""
+        error = host_of(self.host).error if self.host >= 0 else None
+        return NO_TEMPERATURE if error is None else f"{type(error).__name__}: {error}"
+
+    def load_discrete_state(self) -> None:
+        """Copy the network's discrete state into the model: equalised flags, open states, hold starts, the dynamic
+        body's area intervals, whether hard contact holds it, no volume-spline piece held, and each pop vent's area
+        at activation (DELTA LEAKAGE AREA; of one opened by time on an area that follows the dynamic body, NaN until
+        it opens)."""
+        a, net = self.arrays, self.network
+        a.interval[:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
+        a.seat_state[SeatState.HELD] = float(bool(getattr(net, "held", False)))
+        self.unlock_pieces()  # the segment start locks one (exchange.engine.modes.lock_pieces)
+        ei, ef = a.exchange_int, a.exchange_float
+        for j in range(len(net.exchanges)):
+            pop_vent = ei[j, ExchangeInt.POP] == 1
+            a.equalised[j] = net.equalised[j]
+            a.open_state[j] = OpenState.CLOSED if net.closed[j] else \
+                OpenState.SHUT if pop_vent and not net.popped[j] else OpenState.OPEN
+            a.hold_start[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
+            base = net.area_at_activation[j]
+            if pop_vent:
+                ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = base or 0.0
+            elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY:
+                ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = math.nan if base is None else base
+
+    def _modes_of(self, segs) -> list:
+        """The network's DiscreteState of each row of a segment table (:func:`exchange.engine.modes.
+        record_segment`)."""
+        a, ne = self.arrays, len(self.network.exchanges)
+        opened, hold, interval, held, _ = (int(c) for c in segment_blocks(ne))
+        pop_vents = (a.exchange_int[:, ExchangeInt.POP] == 1).tolist()
+        by_body = (a.exchange_int[:, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY).tolist()
+        shut, closed_state = int(OpenState.SHUT), int(OpenState.CLOSED)
+        bits_c, t_c = int(SegmentColumn.EQUALISED), int(SegmentColumn.T_MIN)
+        out = []
+        for row in np.asarray(segs).tolist():
+            bits, states = int(row[bits_c]), row[opened:opened + ne]
+            popped = tuple(pop_vents[j] and states[j] != shut for j in range(ne))
+            closed = tuple(states[j] == closed_state for j in range(ne))
+            holding = tuple(None if h != h else h for h in row[hold:hold + ne])
+            intervals = tuple(int(i) if b else None for i, b in zip(row[interval:interval + ne], by_body))
+            key = (bits, popped, closed, holding, intervals, row[t_c], bool(row[held]))
+            mode = self._modes.get(key)
+            if mode is None:
+                mode = self._modes[key] = DiscreteState(
+                    popped, holding, self._areas_at_activation(popped, key[5]),
+                    tuple(bool(bits >> j & 1) for j in range(ne)), closed, intervals, key[6])
+            out.append(mode)
+        return out
+
+    def _areas_at_activation(self, popped, t_min) -> tuple:
+        """``Network.area_at_activation`` in a segment starting at t_min: a popped vent's area at its pop; the area
+        at the open time of a DELTA LEAKAGE AREA opened by time once a segment starts at or after it
+        (:func:`exchange.engine.segment.begin_segment` sets it there); else None."""
+        ei, ef, out = self.arrays.exchange_int, self.arrays.exchange_float, []
+        for j, ex in enumerate(self.network.exchanges):
+            base = float(ef[j, ExchangeFloat.AREA_AT_ACTIVATION])
+            if popped[j]:
+                out.append(base)
+            elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.POP] == 0 and t_min >= ex.activation.open_time:
+                out.append(base)
+            else:
+                out.append(None)
+        return tuple(out)
+
+    def segment_mode(self, code) -> DiscreteState:
+        """The network's discrete state during segment ``code`` of the latest :meth:`run`."""
+        return self._run_modes[int(code)]
+
+
+def _announce_compilation(kernel) -> None:
+    """Log (logger ``ventsim``, level INFO: ``ventsim run`` prints it) that numba is about to compile ``kernel``
+    when this process has not compiled it and its on-disk cache is missing (the first run after installing)."""
+    if kernel.signatures:
+        return
+    cache = getattr(getattr(kernel, "_cache", None), "_cache_file", None)
+    index = getattr(cache, "_index_path", None)
+    if index is None or not os.path.exists(index):
+        logging.getLogger("ventsim").info(
+            "compiling the engine with numba: the first run after installing takes about a minute of CPU, then it "
+            "is cached (%s)", os.path.dirname(index) if index else "no cache")
