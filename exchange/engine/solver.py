@@ -280,7 +280,7 @@ def solve(M, y0, t0, stops, rtol, atol, max_step, max_steps, near, deadline):
     nseg, nev = 0, 0
     stats = np.zeros(4, np.int64)
     t, y = t0, y0.copy()
-    last_q, last_t, last_dir, stalls = -1, math.nan, 0.0, 0
+    last_q, last_t, last_dir, stalls = np.int64(-1), math.nan, 0.0, 0  # typed: one specialisation of its callees
     empty_i, empty_f = np.empty(0, np.int64), np.empty(0)
     for stop in stops:
         while t < stop:
@@ -304,7 +304,7 @@ def solve(M, y0, t0, stops, rtol, atol, max_step, max_steps, near, deadline):
                 if t_end > t_k:  # the state at the event, integrated to it from the step's start
                     first = cnt[0]
                     status, _, y_end, _, _, _, buf = piece(M, empty_i, empty_f, t_k, y_k, t_end, stop, rtol, atol,
-                                                           max_step, NO_BUDGET, stats, buf, cnt, math.inf)
+                                                           max_step, np.int64(NO_BUDGET), stats, buf, cnt, math.inf)
                     if status != OK:
                         return status, t_end, y_end, buf[:cnt[0]], segs[:nseg], evs[:nev], stats
                     record_segment(M, segs, nseg, first, cnt[0], t_k, t_end, mode)
