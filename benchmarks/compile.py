@@ -65,11 +65,17 @@ run(build_model(load_scene(HERE / CASES[sys.argv[1]])))
 """
 
 
+def _skipped(folder, names) -> set:
+    """numba's and Python's caches, and run outputs (``out/``, ``out_*/``), left out of a copy."""
+    return {n for n in names if n == "__pycache__" or ((n == "out" or n.startswith("out_"))
+                                                        and os.path.isdir(os.path.join(folder, n)))}
+
+
 def copy_tree(dest: Path, rev: str | None) -> Path:
     """The package as it is (``rev`` None: the working tree, else a git revision) in ``dest``, without caches."""
     if rev is None:
         for name in PACKAGES:
-            shutil.copytree(ROOT / name, dest / name, ignore=shutil.ignore_patterns("__pycache__", "out*"))
+            shutil.copytree(ROOT / name, dest / name, ignore=_skipped)
         shutil.copy2(ROOT / "pyproject.toml", dest / "pyproject.toml")
     else:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev], check=True, capture_output=True).stdout

@@ -26,7 +26,7 @@ from cavity.tolerances import R_UNIVERSAL
 from exchange.engine.rhs import rhs as compiled_rhs
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 from exchange.readback.values import cavity_states, exchange_values, load_mode
-from exchange.vent import GasPoint
+from exchange.network.vent import GasPoint
 from cavity.hydraulic import hydraulic_pressure
 
 __all__ = ["compiled_dop853", "scipy_dop853", "both_integrators", "pointwise_history", "assert_same_history",

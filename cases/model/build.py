@@ -18,9 +18,9 @@ from cavity.integration import SolverOptions
 from cavity.species import Species, builtin_species, species_from_coolprop
 from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, SeriesVolume, TableVolume, closed_mesh_volume
 from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
-from exchange.activation import Activation
+from exchange.network.activation import Activation
 from exchange.laws import registry
-from exchange.vent import Ambient, Exchange
+from exchange.network.vent import Ambient, Exchange
 
 from cases.model.build_geometry import (Driver, build_bodies, build_contact, build_leak_area, build_wrapped_volume, cavity_mesh,
                              series_mesh)

@@ -1,6 +1,6 @@
 """The dynamic body against its seat: its rest position, the seat's arrays for the compiled engine and the log of
 impacts and lift-offs (a mixin of :class:`cases.model.scene_network.SceneNetwork`; the contact laws are
-:mod:`exchange.contact_laws`, the seat's switches and what they do :mod:`exchange.compiled_body`)."""
+:mod:`exchange.contact.laws`, the seat's switches and what they do :mod:`exchange.compiled_body`)."""
 from __future__ import annotations
 
 import numpy as np

@@ -1,6 +1,6 @@
 """Contact of a dynamic rigid body with the nodes of a fixed seat: gaps, nodal CPRESS, the force on the body.
 
-The laws and their evaluation on the seat's nodes are the numba kernels of :mod:`exchange.contact_laws` (the
+The laws and their evaluation on the seat's nodes are the numba kernels of :mod:`exchange.contact.laws` (the
 compiled path calls the same ones). The body translates along
 its unit axis by s [m]; each seat node i has a tributary area A_i [m²] (every face gives A_e/N_e to each of its
 N_e nodes, the same split as the blockage rule A_eb = A_e·N_c/N_e) and a gap measured along the axis,
@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exchange.contact_laws import (CRITICAL, EXPLICIT, HARD, LINEAR, NO_DAMPING, SOFTENED, STANDARD,
+from exchange.contact.laws import (CRITICAL, EXPLICIT, HARD, LINEAR, NO_DAMPING, SOFTENED, STANDARD,
                                    held_side, seat_force, seat_nodal)
 
 from exchange.contact import ContactDamping, Hard, LinearPenalty, Softened
@@ -111,7 +111,7 @@ class SeatContact:
         self.law_vector = self._law_vector()
 
     def _law_vector(self) -> np.ndarray:
-        """The seat's parameters for :mod:`exchange.contact_laws` (:data:`~exchange.contact_laws.SEAT_PARAMETERS`)."""
+        """The seat's parameters for :mod:`exchange.contact.laws` (:data:`~exchange.contact.laws.SEAT_PARAMETERS`)."""
         law, d = self.law, self.damping
         kind, a, b = (HARD, 0.0, 0.0) if self.hard else (LINEAR, self.law.stiffness, 0.0) \
             if isinstance(law, LinearPenalty) else (SOFTENED, law.c0, law.p0)
@@ -128,16 +128,16 @@ class SeatContact:
 
     def force(self, s: float, v: float) -> float:
         """Force of the seat on the body along the axis [N] (law and damping; hard contact: damping only):
-        :func:`exchange.contact_laws.seat_force`."""
+        :func:`exchange.contact.laws.seat_force`."""
         return seat_force(float(s), float(v), self.table, self.law_vector)
 
     def held_sigma(self, s: float) -> float:
-        """Side σ of the closed nodes of a hard contact (0 if none): :func:`exchange.contact_laws.held_side`."""
+        """Side σ of the closed nodes of a hard contact (0 if none): :func:`exchange.contact.laws.held_side`."""
         return held_side(float(s), self.table, self.law_vector)
 
     def nodal(self, s: float, v: float, reaction: float = 0.0) -> tuple:
         """(CPRESS per node [Pa], status code per node) at (s, v); ``reaction`` is a held hard contact's F_c [N]
-        (:func:`exchange.contact_laws.seat_nodal`)."""
+        (:func:`exchange.contact.laws.seat_nodal`)."""
         return seat_nodal(float(s), float(v), float(reaction), self.table, self.law_vector)
 
     def thresholds(self) -> np.ndarray:

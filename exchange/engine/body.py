@@ -2,7 +2,7 @@
 the seat's switches (SEAT: lift-off and impact; SEAT_KINK: a kink of the force) and what they do.
 
 The equation of motion and the seat's modes of :mod:`cases.model.scene_network` (its module docstring), on the laws
-of :mod:`exchange.contact_laws` (the kernels the outputs call too): m·dv/dt = m·g + F_gas + F_spring + F_contact
+of :mod:`exchange.contact.laws` (the kernels the outputs call too): m·dv/dt = m·g + F_gas + F_spring + F_contact
 along the body's axis, F_gas = (p − p_amb)·dV/ds of the cavity it intrudes into + (p − p_amb)·A of its pressure
 cavity, F_spring = −(preload + k·s). While hard contact holds it on the seat, s and v are frozen and the contact
 force is the reaction balancing the others.
@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numba import njit
 
-from exchange.contact_laws import HARD, SeatLaw, SeatNode, held_side, seat_force
+from exchange.contact.laws import HARD, SeatLaw, SeatNode, held_side, seat_force
 
 from .gas import states
 from .layout import AmbientColumn, BodyColumn, CavityInt, SeatState, StateColumn, SwitchKind
@@ -65,7 +65,7 @@ def is_held(M):
 
 @njit(cache=True)
 def contact_force(M, y):
-    """Force of the seat on the free body along its axis [N] (:func:`exchange.contact_laws.seat_force`); 0 without
+    """Force of the seat on the free body along its axis [N] (:func:`exchange.contact.laws.seat_force`); 0 without
     contact."""
     if M.seat_state[SeatState.HAS] == 0.0:
         return 0.0

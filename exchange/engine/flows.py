@@ -2,7 +2,7 @@
 
 The area is the exchange's base area (constant, a blocked leakage area as steps of time or of the dynamic body's
 displacement, a leakage surface on a vertex trajectory), times the square of its mesh scale, through the activation
-rule (:func:`exchange.activation.activated_area`). The flow is its law's kernel (``M.laws``, :mod:`exchange.laws.
+rule (:func:`exchange.network.activation.activated_area`). The flow is its law's kernel (``M.laws``, :mod:`exchange.laws.
 registry`) from the side at the higher pressure, or its prescribed flow.
 """
 from __future__ import annotations
@@ -12,7 +12,7 @@ from numba import njit
 
 from blockage.moving_area import moving_leak_area
 
-from exchange.activation import activated_area
+from exchange.network.activation import activated_area
 
 from .layout import (AmbientColumn, AreaKind, CavityInt, Energy, ExchangeFloat, ExchangeInt, OpenState, StateColumn,
                      TableColumn, side)
@@ -48,7 +48,7 @@ def base_area(M, j, t):
 
 @njit(cache=True)
 def exchange_area(M, j, t):
-    """Flow area [m^2] of exchange j at t: :func:`exchange.activation.activated_area` of its base area, with its
+    """Flow area [m^2] of exchange j at t: :func:`exchange.network.activation.activated_area` of its base area, with its
     time window, its open state (a pop vent not popped, or closed at its close pressure: shut), its amplitude and,
     with DELTA LEAKAGE AREA, its area at activation."""
     ei, ef = M.exchange_int, M.exchange_float

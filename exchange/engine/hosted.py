@@ -25,7 +25,7 @@ from numba import njit, objmode
 
 from .layout import StateColumn
 from exchange.laws.realgas_orifice import real_gas_point
-from exchange.vent import GasPoint
+from exchange.network.vent import GasPoint
 
 __all__ = ["Host", "register", "host_of", "cavity_state", "law_flow", "wall_heat", "choke_ratio", "hosted_state",
            "hosted_wall", "hosted_choke_ratio"]
@@ -51,7 +51,7 @@ class Host:
         return self._net()
 
     def point(self, u: int, st) -> GasPoint:
-        """The flow-law view (:class:`exchange.vent.GasPoint`) of side u (−1: ambient): a real-gas cavity's from its
+        """The flow-law view (:class:`exchange.network.vent.GasPoint`) of side u (−1: ambient): a real-gas cavity's from its
         last state, an ideal gas's from its row of the state scratch."""
         net = self.network
         if u < 0:

@@ -23,7 +23,7 @@ from numba.core.errors import NumbaExperimentalFeatureWarning
 from numba.experimental import structref
 
 from cavity.rk_compiled import Status
-from exchange.contact_laws import SeatLaw, SeatNode
+from exchange.contact.laws import SeatLaw, SeatNode
 
 __all__ = ["Model", "ModelArrays", "new_model", "LAW_SIGNATURE", "LAW_SLOTS", "TableColumn", "CavityInt",
            "CavityFloat", "InflatorInt", "InflatorFloat", "ExchangeInt", "ExchangeFloat", "StateColumn",

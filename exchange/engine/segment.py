@@ -22,7 +22,7 @@ __all__ = ["begin_segment", "directions"]
 def begin_segment(M, t, y, seg_end):
     """Segment start from (t, y): re-derive the dynamic body's area intervals and lock its volume-spline pieces, set
     a DELTA LEAKAGE AREA opened by time once past its open time, and equalise (hold closed) the two-way exchanges
-    whose sides agree to :data:`exchange.equalised.EQUALISED_BELOW` (their release switch watches for the network
+    whose sides agree to :data:`exchange.network.equalised.EQUALISED_BELOW` (their release switch watches for the network
     driving them apart); returns the equalised bits (bit j: exchange j)."""
     ei, ef, eq = M.exchange_int, M.exchange_float, M.equalised
     if has_body(M):

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from cavity.realgas import TAYLOR_BELOW, RealGasSolveError, isentrope_temperature, shifted
 from .discharge import discharge_coefficient
 from .orifice import LINEAR_BELOW, orifice_mass_flow
-from exchange.vent import GasPoint
+from exchange.network.vent import GasPoint
 
 __all__ = ["real_gas_critical_state", "real_gas_mass_flux", "RealGasOrificeLaw", "RealGasPoint", "real_gas_point"]
 
@@ -302,7 +302,7 @@ class RealGasOrificeLaw:
 
 @dataclass(frozen=True)
 class RealGasPoint(GasPoint):
-    """A :class:`exchange.vent.GasPoint` of a real-gas cavity: also its fluid (equation of state); R is p/(ρT)
+    """A :class:`exchange.network.vent.GasPoint` of a real-gas cavity: also its fluid (equation of state); R is p/(ρT)
     and γ the isentropic exponent ρc²/p there."""
 
     fluid: object = None

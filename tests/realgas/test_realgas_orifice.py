@@ -11,7 +11,7 @@ from scipy.optimize import minimize_scalar
 from cavity.realgas import IdealGasFluid, RealFluid
 from exchange.laws.orifice import LINEAR_BELOW, orifice_mass_flow
 from exchange.laws.realgas_orifice import RealGasOrificeLaw, real_gas_critical_state, real_gas_mass_flux
-from exchange.vent import GasPoint
+from exchange.network.vent import GasPoint
 
 
 @pytest.mark.parametrize("gamma", [1.1, 1.3, 1.4, 5.0 / 3.0])

@@ -16,7 +16,7 @@ class NetworkLowering:
         cached = self.__dict__.get("_compiled")
         if cached is None or cached[0] is not key[0] or any(x is not y for x, y in zip(cached[1:], key[1:])) \
                 or not _hosted_here(cached[-1], self):
-            from .engine.lower import lower
+            from exchange.engine.lower import lower
 
             cached = key + (lower(self),)
             self.__dict__["_compiled"] = cached
@@ -31,7 +31,7 @@ class NetworkLowering:
 
     def compiled_unsupported(self) -> str | None:
         """Why :meth:`compiled_solver` is None (None: it is supported)."""
-        from .engine.lower import unsupported_reason
+        from exchange.engine.lower import unsupported_reason
 
         return unsupported_reason(self)
 
@@ -41,7 +41,7 @@ def _hosted_here(fast, net) -> bool:
     it was copied or unpickled from): else it is lowered again (:mod:`exchange.hosted`)."""
     if fast is None or fast.host < 0:
         return True
-    from .engine.hosted import HOSTS
+    from exchange.engine.hosted import HOSTS
 
     host = HOSTS.get(fast.host)
     return host is not None and host.network is net

@@ -2,7 +2,7 @@
 
 Small frozen dataclasses and the laws by law object after Abaqus Analysis User's Guide 37.1.2 ("Contact
 pressure-overclosure relationships") and 37.1.3 ("Contact damping"); each formula is written once, as a numba
-kernel of :mod:`exchange.contact_laws` (which the compiled path calls too), and these functions pick it by law
+kernel of :mod:`exchange.contact.laws` (which the compiled path calls too), and these functions pick it by law
 object. Scenes evaluate the same kernels on the nodes of a seat (:mod:`cases.model.seat_contact`, ``[[contact]]``
 tables, docs/contact.md).
 
@@ -18,9 +18,9 @@ import math
 from dataclasses import dataclass
 from typing import Optional, Union
 
-from exchange.contact_laws import critical_damping_coefficient as _critical_damping_coefficient
-from exchange.contact_laws import damping_coefficient as _damping_coefficient
-from exchange.contact_laws import penalty_pressure, penalty_stiffness, softened_pressure, softened_stiffness
+from exchange.contact.laws import critical_damping_coefficient as _critical_damping_coefficient
+from exchange.contact.laws import damping_coefficient as _damping_coefficient
+from exchange.contact.laws import penalty_pressure, penalty_stiffness, softened_pressure, softened_stiffness
 
 __all__ = [
     "Hard", "LinearPenalty", "Softened", "ContactDamping", "DEFAULT_CRITICAL_FRACTION",

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .activation import Activation
-from .laws.orifice import OrificeLaw, critical_pressure_ratio
+from exchange.laws.orifice import OrificeLaw, critical_pressure_ratio
 
 __all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]  # OrificeLaw re-exported from .laws.orifice
 

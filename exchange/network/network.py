@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .network_lowering import NetworkLowering
+from .lowering import NetworkLowering
 from .vent import GasPoint
 
 __all__ = ["Network", "DiscreteState", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
@@ -55,8 +55,8 @@ class Network(NetworkLowering):
     ----------
     gas : cavity.gas.GasModel
     cavities : tuple of cavity.cavity.Cavity
-    exchanges : tuple of exchange.vent.Exchange
-    ambient : exchange.vent.Ambient
+    exchanges : tuple of exchange.network.vent.Exchange
+    ambient : exchange.network.vent.Ambient
     """
 
     gas: object
@@ -117,7 +117,7 @@ class Network(NetworkLowering):
 
     def states(self, t: float, y) -> list:
         """The :class:`exchange.readback.values.GasState` of every cavity at (t, y), from the compiled engine."""
-        from .readback.values import cavity_states
+        from exchange.readback.values import cavity_states
 
         return cavity_states(self.engine(), t, y)
 
@@ -127,7 +127,7 @@ class Network(NetworkLowering):
 
     def can_equalise(self, index: int) -> bool:
         """Exchange ``index`` has an equalised mode: a pneumatic law between two gas cavities, or two-way to
-        ambient (:data:`exchange.equalised.EQUALISED_BELOW`)."""
+        ambient (:data:`exchange.network.equalised.EQUALISED_BELOW`)."""
         ex = self.exchanges[index]
         if ex.law.prescribed or not ex.law.pneumatic or not (ex.two_way or ex.downstream is not None):
             return False
