@@ -1,5 +1,5 @@
-"""A uniform-pressure gas cavity: its definition and its unknowns (the compiled engine derives its state and rates:
-:func:`exchange.compiled_rhs.states`, :func:`exchange.compiled_rhs.network_rhs`).
+"""A uniform-pressure gas cavity: its definition and its unknowns (the engine derives its state and rates:
+:func:`exchange.engine.gas.states`, :func:`exchange.engine.rhs.rhs`), and its heat loss.
 
 Unknowns of one cavity: the mass of every species [kg] and, unless isothermal, the internal energy U [J].
 Energy balance of the control volume (open system, moving boundary):
@@ -15,12 +15,28 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from .gas import GasModel
 
-__all__ = ["Cavity", "ENERGY_MODELS"]
+__all__ = ["Cavity", "ENERGY_MODELS", "heat_loss"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss")
+
+
+@njit(cache=True)
+def heat_loss(hA, T, T_ambient):
+    r"""Heat a cavity loses to its surroundings [W] (Newton's law of cooling; Abaqus *FLUID CAVITY heat transfer
+    through the cavity wall by a film coefficient).
+
+    .. math:: \dot Q = h_c A\,(T - T_{amb})
+
+    ``hA`` the heat-transfer coefficient times the area [W/K], T and T_ambient [K] (> 0 leaves the gas).
+
+    >>> heat_loss(2.0, 350.0, 300.0)
+    100.0
+    """
+    return hA * (T - T_ambient)
 
 
 @dataclass(frozen=True)
@@ -91,4 +107,5 @@ class Cavity:
         """Heat flow out of the cavity h_c·A·(T − T_amb) [W]; 0 unless the energy model is heat_loss."""
         if self.energy != "heat_loss":
             return 0.0
-        return self.heat_transfer_coefficient * self.heat_transfer_area * (T - self.ambient_temperature)
+        return heat_loss(self.heat_transfer_coefficient * self.heat_transfer_area, float(T),
+                         self.ambient_temperature)

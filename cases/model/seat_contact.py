@@ -23,10 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from exchange.contact.laws import (CRITICAL, EXPLICIT, HARD, LINEAR, NO_DAMPING, SOFTENED, STANDARD,
-                                   held_side, seat_force, seat_nodal)
-
-from exchange.contact import ContactDamping, Hard, LinearPenalty, Softened
+from exchange.contact.definitions import ContactDamping, Hard, LinearPenalty, Softened, law_vector
+from exchange.contact.laws import held_side, seat_force, seat_nodal
 
 __all__ = ["SeatContact", "ray_gaps", "nodal_areas", "STATUS_CODES"]
 
@@ -111,17 +109,9 @@ class SeatContact:
         self.law_vector = self._law_vector()
 
     def _law_vector(self) -> np.ndarray:
-        """The seat's parameters for :mod:`exchange.contact.laws` (:data:`~exchange.contact.laws.SEAT_PARAMETERS`)."""
-        law, d = self.law, self.damping
-        kind, a, b = (HARD, 0.0, 0.0) if self.hard else (LINEAR, self.law.stiffness, 0.0) \
-            if isinstance(law, LinearPenalty) else (SOFTENED, law.c0, law.p0)
-        if self.critical_fraction is not None:
-            damping = (CRITICAL, 0.0, 0.0, 0.0, self.critical_fraction)
-        elif d is None:
-            damping = (NO_DAMPING, 0.0, 0.0, 0.0, 0.0)
-        else:
-            damping = (STANDARD if d.style == "standard" else EXPLICIT, d.mu0, d.c0, d.eta, 0.0)
-        return np.array((kind, a, b) + damping + (self.mass, self.seat_area, self.size), dtype=float)
+        """The seat's parameters for :mod:`exchange.contact.laws` (:func:`exchange.contact.definitions.
+        law_vector`)."""
+        return law_vector(self.law, self.damping, self.critical_fraction, self.mass, self.seat_area, self.size)
 
     def gaps(self, s: float) -> np.ndarray:
         return self.g0 + self.sigma * s

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from cavity.tables import TableError
 
+from cases.scene import law_keys
 from cases.scene.errors import SceneError
 from cases.scene.schema import unknown_name
 from cases.scene.tables_io import read_table
@@ -65,8 +66,7 @@ def check_cross_references(scene: Scene, path) -> None:
         _check_hydraulic_exchange(scene, e, path, f"exchange[{i}]")
 
 
-LAW_KEYS = {"mass_rate_leakage": ("leakage_table",), "volume_rate_leakage": ("leakage_table",),
-            "bulk_viscosity": ("viscous_resistance",), "linear_resistance": ("conductance",)}
+
 
 
 def _check_bodies(scene: Scene, path) -> None:
@@ -113,12 +113,11 @@ def _check_bodies(scene: Scene, path) -> None:
 
 
 def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
-    for k in LAW_KEYS.get(e.law, ()):
+    for k in law_keys.required(e.law):
         if not getattr(e, k):
-            raise SceneError(path, f"{where}.{k}", f"required for law {e.law!r}")
-    require_file(scene, e.leakage_table, path, f"{where}.leakage_table")
-    if e.law in ("mass_flux", "volume_flux") and e.flux == 0.0:
-        raise SceneError(path, f"{where}.flux", f"required (non-zero) for law {e.law!r}")
+            raise SceneError(path, f"{where}.{k}", f"required (non-zero) for law {e.law!r}")
+    for k in law_keys.of_kind("file"):
+        require_file(scene, getattr(e, k.name), path, f"{where}.{k.name}")
     sources = [k for k in ("leakage_surface", "leakage_box", "leakage_nodes") if getattr(e, k)]
     geometric = bool(sources)
     if len(sources) > 1:
@@ -151,8 +150,6 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
                          "cavity's); to stop a vent to ambient use close_time")
 
 
-PNEUMATIC_LAWS = ("orifice", "fabric_leakage")
-
 
 def _check_hydraulic_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
     fluids = {c.name: c.fluid for c in scene.cavity}
@@ -161,10 +158,9 @@ def _check_hydraulic_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -
         return
     if e.to != "ambient" and len(set(sides)) > 1:
         raise SceneError(path, f"{where}.to", "an exchange cannot join a gas cavity and a hydraulic cavity")
-    if e.law in PNEUMATIC_LAWS:
-        raise SceneError(path, f"{where}.law", f"{e.law!r} is for gases; a hydraulic cavity uses "
-                                               "volume_rate_leakage, mass_rate_leakage, bulk_viscosity, "
-                                               "linear_resistance or a flux")
+    if law_keys.gas_only(e.law):
+        usable = ", ".join(n for n in law_keys.names() if not law_keys.gas_only(n))
+        raise SceneError(path, f"{where}.law", f"{e.law!r} is for gases; a hydraulic cavity uses one of {usable}")
     if e.two_way:
         raise SceneError(path, f"{where}.two_way", "ambient gas cannot flow into a hydraulic cavity")
 

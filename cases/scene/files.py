@@ -13,6 +13,7 @@ from types import SimpleNamespace
 
 from cavity.integration import METHODS
 
+from cases.scene import law_keys
 from cases.scene.errors import SceneError
 from cases.scene.schema import key, parse
 from cases.scene.contact import ContactSpec
@@ -25,8 +26,7 @@ __all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "Am
            "ExchangeSpec", "ContactSpec", "LimitsSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss", "wall")
-LAWS = ("orifice", "fabric_leakage", "graefe", "mass_rate_leakage", "volume_rate_leakage", "mass_flux",
-        "volume_flux", "bulk_viscosity", "linear_resistance")
+LAWS = law_keys.names()  # the law registry's (exchange.laws.registry)
 INFLATOR_TYPES = ("mass_temperature", "tank_test", "pressure_mass", "dual_pressure")
 
 
@@ -182,30 +182,16 @@ class CavitySpec:
 
 
 @dataclass(frozen=True, kw_only=True)
-class ExchangeSpec:
+class _ExchangeHead:
     name: str = key("exchange name (column prefix in history.csv)")
     from_: str = key("first (upstream) cavity", toml="from")
     to: str = key("second cavity, or 'ambient'", default="ambient")
     law: str = key("flow law", default="orifice", choices=LAWS)
     area: float = key("flow area", "m^2", check="nonnegative", default=0.0)
-    discharge_coefficient: object = key("orifice, fabric_leakage: Cd, a number or a CSV table of "
-                                        "`discharge_coefficient_of`", default=1.0)
-    discharge_coefficient_of: str = key("abscissa of a Cd table: upstream pressure [Pa] or time [s]",
-                                        default="pressure", choices=("pressure", "time"))
-    open_fraction: float = key("fabric_leakage: open (porous) fraction of the area", default=1.0, check="fraction")
-    flc: float = key("graefe: leakage coefficient FLC", default=1.0, check="nonnegative")
-    fac: float = key("graefe: area coefficient FAC", default=1.0, check="nonnegative")
-    leakage_table: str = key("mass_rate_leakage / volume_rate_leakage: CSV (|Δp| [Pa], flow per area "
-                             "[kg/(s m^2)] or [m^3/(s m^2)]); first row 0, 0", default="")
-    leakage_table_extrapolation: str = key("beyond the last row", default="linear", choices=("linear", "constant"))
-    flux: float = key("mass_flux [kg/(s m^2)] / volume_flux [m^3/(s m^2)]: prescribed flow per area, signed, "
-                      "positive from `from` to `to`", default=0.0, check="finite")
-    flux_amplitude: object = key("mass_flux / volume_flux: multiplier, a number or CSV (time [s], [-])",
-                                 default=None)
-    viscous_resistance: float = key("bulk_viscosity: c_v in Δp = c_v·v + c_h·ρ·v|v|", "Pa s/m", default=0.0,
-                                    check="nonnegative")
-    hydrodynamic_resistance: float = key("bulk_viscosity: c_h", default=0.0, check="nonnegative")
-    conductance: float = key("linear_resistance: ṁ = G·A·Δp", "kg/(s Pa m^2)", default=0.0, check="nonnegative")
+
+
+@dataclass(frozen=True, kw_only=True)
+class ExchangeSpec(law_keys.LawKeys, _ExchangeHead):  # the laws' keys (cases.scene.law_keys) after `area`
     two_way: bool = key("to ambient: let ambient gas flow back in when the cavity is below ambient",
                         default=False)
     open_time: float = key("activation: closed before this time", "s", default=0.0, check="nonnegative")
@@ -377,9 +363,9 @@ def scene_from_dict(data: dict, path) -> Scene:
         "contact": many(ContactSpec),
         "limits": lambda v, w: parse(LimitsSpec, v, path, w),
         "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,
-                                        "discharge_coefficient": number_or_table("discharge coefficient [-]"),
-                                        "flux_amplitude": table("flux amplitude [-]"),
-                                        "amplitude": table("area amplitude [-]")}),
+                                        "amplitude": table("area amplitude [-]"),
+                                        **{k.name: number_or_table(law_keys.label(k)) for k in law_keys.of_kind("cd")},
+                                        **{k.name: table(law_keys.label(k)) for k in law_keys.of_kind("table")}}),
     })
     scene = replace(scene, _path=str(path))
     validate_scene(scene, data)

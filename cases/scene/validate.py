@@ -17,6 +17,7 @@ from types import SimpleNamespace
 from cavity.caution import VentsimWarning, caution
 from cavity.tables import Table
 
+from cases.scene import law_keys
 from cases.scene.errors import SceneError
 from cases.scene.schema import check_fields, toml_name
 from cases.scene.checks import check_cross_references
@@ -46,7 +47,8 @@ def register_specs(**classes) -> None:
 _SPEC_LISTS = {"species": "SpeciesSpec", "cavity": "CavitySpec", "exchange": "ExchangeSpec", "body": "BodySpec",
                "contact": "ContactSpec"}
 _TABLE_FILES = {"cavity": ("volume_table", "mesh_scale_table", "temperature_table"),
-                "exchange": ("leakage_table",), "body": ("displacement_table", "rotation_table")}
+                "exchange": tuple(k.name for k in law_keys.of_kind("file")),
+                "body": ("displacement_table", "rotation_table")}
 
 
 def ensure_valid(scene) -> list:
@@ -136,8 +138,9 @@ def _values(scene, path) -> None:
         if e.leakage_box:
             vector(e.leakage_box, 6, path, f"{where}.leakage_box")
         names_list(e.blocked_by, path, f"{where}.blocked_by")
-        table_value(e.discharge_coefficient, path, f"{where}.discharge_coefficient", allow_none=False)
-        for k in ("flux_amplitude", "amplitude"):
+        for k in law_keys.of_kind("cd"):
+            table_value(getattr(e, k.name), path, f"{where}.{k.name}", allow_none=False)
+        for k in [k.name for k in law_keys.of_kind("table")] + ["amplitude"]:
             table_value(getattr(e, k), path, f"{where}.{k}")
 
 
@@ -169,8 +172,8 @@ def _sanity(scene, path) -> None:
             if not item.name:
                 raise SceneError(path, f"{name}[{i}].name", "expected a non-empty name")
     for i, e in enumerate(scene.exchange):
-        cd = e.discharge_coefficient
-        _positive_values(cd, path, f"exchange[{i}].discharge_coefficient", "> 0")
+        for k in law_keys.of_kind("cd"):
+            _positive_values(getattr(e, k.name), path, f"exchange[{i}].{k.name}", "> 0")
         if e.amplitude is not None:
             _positive_values(e.amplitude, path, f"exchange[{i}].amplitude", ">= 0")
         if e.effective_area is not None and not (e.leakage_surface or e.leakage_box or e.leakage_nodes):
@@ -231,7 +234,8 @@ def _budgets(scene, path) -> None:
 #: no flow, which is what a finished tank test means).
 _TIME_TABLES = {"cavity": ("volume_table", "mesh_scale_table", "temperature_table"),
                 "inflator": ("mass_flow", "temperature", "inflator_pressure"),
-                "exchange": ("amplitude", "flux_amplitude"), "body": ("displacement_table", "rotation_table")}
+                "exchange": ("amplitude",) + tuple(k.name for k in law_keys.of_kind("table")),
+                "body": ("displacement_table", "rotation_table")}
 
 
 def _held_tables(scene, path) -> None:

@@ -1,9 +1,9 @@
-"""Normal contact mechanics: pressure-overclosure laws, contact damping and CPRESS (issue 7).
+"""Normal contact mechanics: pressure-overclosure laws, contact damping and CPRESS.
 
 Small frozen dataclasses and the laws by law object after Abaqus Analysis User's Guide 37.1.2 ("Contact
 pressure-overclosure relationships") and 37.1.3 ("Contact damping"); each formula is written once, as a numba
-kernel of :mod:`exchange.contact.laws` (which the compiled path calls too), and these functions pick it by law
-object. Scenes evaluate the same kernels on the nodes of a seat (:mod:`cases.model.seat_contact`, ``[[contact]]``
+kernel of :mod:`exchange.contact.laws` (which the engine calls too), and these functions pick it by law object
+(:func:`law_vector`: a law, its damping and its seat as the kernels' parameter vector). Scenes evaluate the same kernels on the nodes of a seat (:mod:`cases.model.seat_contact`, ``[[contact]]``
 tables, docs/contact.md).
 
 Sign conventions (SI throughout):
@@ -18,15 +18,18 @@ import math
 from dataclasses import dataclass
 from typing import Optional, Union
 
-from exchange.contact.laws import critical_damping_coefficient as _critical_damping_coefficient
-from exchange.contact.laws import damping_coefficient as _damping_coefficient
-from exchange.contact.laws import penalty_pressure, penalty_stiffness, softened_pressure, softened_stiffness
+import numpy as np
+
+from .laws import CRITICAL, EXPLICIT, HARD, LINEAR, NO_DAMPING, SOFTENED, STANDARD, SeatLaw, damping_of, seat_node
+from .laws import critical_damping_coefficient as _critical_damping_coefficient
+from .laws import damping_coefficient as _damping_coefficient
+from .laws import penalty_pressure, penalty_stiffness, softened_pressure, softened_stiffness
 
 __all__ = [
     "Hard", "LinearPenalty", "Softened", "ContactDamping", "DEFAULT_CRITICAL_FRACTION",
     "overclosure_pressure", "contact_stiffness", "hard_contact_pressure", "damping_coefficient",
     "damping_pressure", "critical_damping_coefficient", "default_critical_fraction", "cpress",
-    "suggest_mu0", "suggest_mu0_euler_column",
+    "suggest_mu0", "suggest_mu0_euler_column", "law_vector",
 ]
 
 #: Abaqus/Explicit default critical damping fraction for penalty and softened contact [-].
@@ -246,10 +249,7 @@ def damping_pressure(v_rel: float, clearance: float, rule: ContactDamping) -> fl
     >>> damping_pressure(2.0, 1e-4, ContactDamping(100.0, style="explicit"))
     0.0
     """
-    if rule.style == "explicit":
-        mu = rule.mu0 if clearance <= 0.0 else 0.0
-    else:
-        mu = damping_coefficient(clearance, rule.mu0, rule.c0, rule.eta)
+    mu, _ = damping_of(float(clearance), clearance <= 0.0, law_vector(Hard(), rule))
     return mu * v_rel
 
 
@@ -334,19 +334,10 @@ def cpress(h: float, v_rel: float, law: Law, damping: Optional[ContactDamping] =
     >>> cpress(0.0, 0.0, Hard(), multiplier=hard_contact_pressure(50.0, 1e-4))
     (500000.0, 'closed')
     """
-    clearance = -h
-    if isinstance(law, Hard):
-        closed, p_e = h >= 0.0, multiplier
-    else:
-        closed = h >= 0.0 if isinstance(law, LinearPenalty) else h > -law.c0
-        p_e = overclosure_pressure(h, law) if closed else 0.0
-    if damping is None:
-        return (p_e, "closed") if closed else (0.0, "open")
-    p_v = damping_pressure(v_rel, max(clearance, 0.0) if closed else clearance, damping)
+    p, closed, within = seat_node(-float(h), float(v_rel), 1.0, law_vector(law, damping))
     if closed:
-        return p_e + p_v, "closed"
-    within = damping.style == "standard" and clearance < damping.c0
-    return (p_v, "VD") if within else (0.0, "open")
+        return p + (multiplier if isinstance(law, Hard) else 0.0), "closed"
+    return (p, "VD") if within else (0.0, "open")
 
 
 def suggest_mu0(peak_pressure: float, peak_velocity: float, fraction: float = 0.01) -> float:
@@ -386,3 +377,31 @@ def suggest_mu0_euler_column(dt: float, length: float, load: float, critical_loa
     if not (dt > 0.0 and length > 0.0):
         raise ValueError("need dt > 0 s and length > 0 m")
     return dt * math.pi ** 2 / (2.0 * length) * abs(load - critical_load)
+
+
+def law_vector(law: Law, damping: Optional[ContactDamping] = None, critical_fraction: Optional[float] = None,
+               mass: float = 0.0, seat_area: float = 1.0, size: float = 0.0) -> np.ndarray:
+    """The parameter vector of :mod:`exchange.contact.laws` (:class:`~exchange.contact.laws.SeatLaw`) of a
+    pressure-overclosure law, its damping (or a critical damping fraction, with the body's mass [kg], the reachable
+    seat area [m²] it shares) and the seat's size [m] (hard contact's touch tolerance is :data:`~exchange.contact.
+    laws.TOUCH` of it).
+
+    >>> law_vector(LinearPenalty(1e9), ContactDamping(10.0, c0=1e-3)).tolist()[:6]
+    [1.0, 1000000000.0, 0.0, 1.0, 10.0, 0.001]
+    """
+    vec = np.zeros(len(SeatLaw))
+    if isinstance(law, LinearPenalty):
+        vec[SeatLaw.KIND], vec[SeatLaw.STIFFNESS] = LINEAR, law.stiffness
+    elif isinstance(law, Softened):
+        vec[SeatLaw.KIND], vec[SeatLaw.STIFFNESS], vec[SeatLaw.P0] = SOFTENED, law.c0, law.p0
+    else:
+        vec[SeatLaw.KIND] = HARD
+    if critical_fraction is not None:
+        vec[SeatLaw.DAMPING], vec[SeatLaw.CRITICAL_FRACTION] = CRITICAL, critical_fraction
+    elif damping is not None:
+        vec[SeatLaw.DAMPING] = STANDARD if damping.style == "standard" else EXPLICIT
+        vec[SeatLaw.MU0], vec[SeatLaw.DAMPING_C0], vec[SeatLaw.ETA] = damping.mu0, damping.c0, damping.eta
+    else:
+        vec[SeatLaw.DAMPING] = NO_DAMPING
+    vec[SeatLaw.BODY_MASS], vec[SeatLaw.SEAT_AREA], vec[SeatLaw.SEAT_SIZE] = mass, seat_area, size
+    return vec

@@ -21,7 +21,7 @@ from numba import njit
 
 __all__ = ["Overclosure", "Damping", "SeatLaw", "SeatNode", "HARD", "LINEAR", "SOFTENED", "NO_DAMPING", "STANDARD", "EXPLICIT", "CRITICAL", "SEAT_PARAMETERS",
            "TOUCH", "penalty_pressure", "penalty_stiffness", "softened_pressure", "softened_stiffness",
-           "damping_coefficient", "critical_damping_coefficient", "seat_node", "seat_force", "seat_nodal",
+           "damping_coefficient", "critical_damping_coefficient", "damping_of", "seat_node", "seat_force", "seat_nodal",
            "held_side"]
 
 class Overclosure(IntEnum):
@@ -169,22 +169,42 @@ def critical_damping_coefficient(fraction, mass, stiffness):
 
 
 @njit(cache=True)
+def damping_of(clearance, closed, law):
+    r"""(μ [Pa·s/m], within the damping clearance) of a node of clearance ``clearance`` [m] (its gap; a closed
+    node's is >= 0), closed or not, under the seat's damping ``law`` (:class:`SeatLaw`; not the critical fraction,
+    which needs the node's stiffness: :func:`seat_node`): explicit μ0 while closed with zero clearance; standard
+    :func:`damping_coefficient` of the clearance, an open node within c0 being "VD"; none.
+
+    >>> law = np.zeros(11); law[SeatLaw.DAMPING], law[SeatLaw.MU0], law[SeatLaw.DAMPING_C0] = STANDARD, 10.0, 1e-3
+    >>> damping_of(5e-4, False, law)
+    (5.0, True)
+    """
+    damping = int(law[SeatLaw.DAMPING])
+    if damping == EXPLICIT:
+        return (law[SeatLaw.MU0] if closed and clearance <= 0.0 else 0.0), False
+    if damping == STANDARD:
+        mu = damping_coefficient(clearance, law[SeatLaw.MU0], law[SeatLaw.DAMPING_C0], law[SeatLaw.ETA])
+        return mu, (not closed and clearance < law[SeatLaw.DAMPING_C0])
+    return 0.0, False
+
+
+@njit(cache=True)
 def seat_node(g, v_rel, area, law):
     r"""(pressure [Pa], closed, within the damping clearance) of one seat node with gap ``g`` [m] (overclosure
     −g), approach speed ``v_rel`` [m/s] and tributary area ``area`` [m²]; ``law`` the seat's parameters
-    (:data:`SEAT_PARAMETERS`). Hard contact gives its damping only (its elastic part is the reaction).
+    (:class:`SeatLaw`). Hard contact gives its damping only (its elastic part is the reaction). The CPRESS of
+    Abaqus at a slave node: closed p = p_e(h) + p_v, VD (open within the damping clearance) p = p_v, open 0.
 
     .. math:: p = p_e(-g) + \mu\,v_{rel}
 
     Closed: g <= TOUCH·size (hard), g <= 0 (linear), g < c0 (softened). μ: critical fraction
-    ξ·√(4·m_i·k_i)/A_i with m_i = m·A_i/A_seat, k_i = A_i·dp/dh while closed; explicit μ0 while closed with
-    clearance <= 0; standard :func:`damping_coefficient` of the clearance (a closed node's clearance is >= 0).
+    ξ·√(4·m_i·k_i)/A_i with m_i = m·A_i/A_seat, k_i = A_i·dp/dh while closed; otherwise :func:`damping_of`.
 
     >>> law = np.array([1.0, 1e9, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
     >>> seat_node(-1e-4, 0.5, 1.0, law)
     (100000.0, True, False)
     """
-    kind, damping = int(law[SeatLaw.KIND]), int(law[SeatLaw.DAMPING])
+    kind = int(law[SeatLaw.KIND])
     k_or_c0, p0 = law[SeatLaw.STIFFNESS], law[SeatLaw.P0]
     if kind == HARD:
         closed, p = g <= TOUCH * law[SeatLaw.SEAT_SIZE], 0.0
@@ -193,19 +213,14 @@ def seat_node(g, v_rel, area, law):
     else:
         closed, p = g < k_or_c0, softened_pressure(-g, k_or_c0, p0) if math.isfinite(g) else 0.0
     within = False
-    if damping == CRITICAL:
+    if int(law[SeatLaw.DAMPING]) == CRITICAL:
         if closed:
             k = penalty_stiffness(-g, k_or_c0) if kind == LINEAR else softened_stiffness(-g, k_or_c0, p0)
             nodal_mass = law[SeatLaw.BODY_MASS] * area / law[SeatLaw.SEAT_AREA]
             mu = critical_damping_coefficient(law[SeatLaw.CRITICAL_FRACTION], nodal_mass, area * k) / area
             p += mu * v_rel
-    elif damping != NO_DAMPING:
-        c = max(g, 0.0) if closed else g
-        if damping == EXPLICIT:
-            mu = law[SeatLaw.MU0] if closed and c <= 0.0 else 0.0
-        else:
-            mu = damping_coefficient(c, law[SeatLaw.MU0], law[SeatLaw.DAMPING_C0], law[SeatLaw.ETA])
-            within = not closed and c < law[SeatLaw.DAMPING_C0]
+    elif int(law[SeatLaw.DAMPING]) != NO_DAMPING:
+        mu, within = damping_of(max(g, 0.0) if closed else g, closed, law)
         p += mu * v_rel
     return p, closed, within
 

@@ -16,7 +16,7 @@ from exchange.network import DiscreteState
 from .hosted import host_of
 from .inflators import warn_clamped
 from .layout import (UNLOCKED, AreaKind, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState, SegmentColumn,
-                     SwitchKind, segment_blocks)
+                     SwitchKind, flags_of, open_state_of, segment_blocks)
 
 __all__ = ["Engine"]
 
@@ -129,8 +129,7 @@ class Engine:
         for j in range(len(net.exchanges)):
             pop_vent = ei[j, ExchangeInt.POP] == 1
             a.equalised[j] = net.equalised[j]
-            a.open_state[j] = OpenState.CLOSED if net.closed[j] else \
-                OpenState.SHUT if pop_vent and not net.popped[j] else OpenState.OPEN
+            a.open_state[j] = open_state_of(pop_vent, net.popped[j], net.closed[j])
             a.hold_start[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
             base = net.area_at_activation[j]
             if pop_vent:
@@ -145,13 +144,12 @@ class Engine:
         opened, hold, interval, held, _ = (int(c) for c in segment_blocks(ne))
         pop_vents = (a.exchange_int[:, ExchangeInt.POP] == 1).tolist()
         by_body = (a.exchange_int[:, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY).tolist()
-        shut, closed_state = int(OpenState.SHUT), int(OpenState.CLOSED)
         bits_c, t_c = int(SegmentColumn.EQUALISED), int(SegmentColumn.T_MIN)
         out = []
         for row in np.asarray(segs).tolist():
-            bits, states = int(row[bits_c]), row[opened:opened + ne]
-            popped = tuple(pop_vents[j] and states[j] != shut for j in range(ne))
-            closed = tuple(states[j] == closed_state for j in range(ne))
+            bits = int(row[bits_c])
+            flags = [flags_of(int(state), pop_vents[j]) for j, state in enumerate(row[opened:opened + ne])]
+            popped, closed = tuple(f[0] for f in flags), tuple(f[1] for f in flags)
             holding = tuple(None if h != h else h for h in row[hold:hold + ne])
             intervals = tuple(int(i) if b else None for i, b in zip(row[interval:interval + ne], by_body))
             key = (bits, popped, closed, holding, intervals, row[t_c], bool(row[held]))

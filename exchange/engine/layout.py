@@ -28,7 +28,7 @@ from exchange.contact.laws import SeatLaw, SeatNode
 __all__ = ["Model", "ModelArrays", "new_model", "LAW_SIGNATURE", "LAW_SLOTS", "TableColumn", "CavityInt",
            "CavityFloat", "InflatorInt", "InflatorFloat", "ExchangeInt", "ExchangeFloat", "StateColumn",
            "AmbientColumn", "BodyColumn", "SeatState", "SeatNode", "SeatLaw", "KinkColumn", "SegmentColumn", "segment_blocks", "Energy", "Fluid", "VolumeKind",
-           "AreaKind", "InflatorKind", "OpenState", "SwitchKind", "KinkVariable", "Status", "SWITCH_LABELS",
+           "AreaKind", "InflatorKind", "OpenState", "open_state_of", "flags_of", "SwitchKind", "KinkVariable", "Status", "SWITCH_LABELS",
            "side", "is_kink", "is_body_switch", "is_seat_switch", "one_way_direction", "UNLOCKED", "KNOT_SLACK"]
 
 
@@ -234,6 +234,16 @@ class OpenState(IntEnum):
     SHUT = 0  # a pop vent that has not popped
     OPEN = 1
     CLOSED = 2  # closed for good at its close pressure
+
+
+def open_state_of(pop_vent: bool, popped: bool, closed: bool) -> int:
+    """An exchange's OpenState from the network's flags: closed for good, a pop vent not popped yet, or open."""
+    return OpenState.CLOSED if closed else OpenState.SHUT if pop_vent and not popped else OpenState.OPEN
+
+
+def flags_of(state: int, pop_vent: bool) -> tuple:
+    """(popped, closed) of an exchange in OpenState ``state``: the inverse of :func:`open_state_of`."""
+    return bool(pop_vent and state != OpenState.SHUT), state == OpenState.CLOSED
 
 
 class KinkVariable(IntEnum):

@@ -11,6 +11,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from cavity.cavity import heat_loss
+
 from .body import body_rhs, has_body, is_held
 from .flows import add_transfer, exchange_flow
 from .gas import states
@@ -18,23 +20,9 @@ from .hosted import hosted_wall
 from .inflators import inflator_enthalpy_flow, inflator_flow
 from .layout import CavityFloat, CavityInt, Energy, ExchangeInt, InflatorFloat, InflatorInt, StateColumn, side
 
-__all__ = ["rhs", "heat_loss"]
+__all__ = ["rhs"]
 
 CI, P, T, DV = CavityInt, StateColumn.P, StateColumn.T, StateColumn.DV
-
-
-@njit(cache=True)
-def heat_loss(hA, T, T_ambient):
-    r"""Heat a cavity loses to its surroundings [W] (Newton's law of cooling).
-
-    .. math:: \dot Q = h_c A\,(T - T_{amb})
-
-    ``hA`` the heat-transfer coefficient times the area [W/K], T and T_ambient [K] (> 0 leaves the gas).
-
-    >>> heat_loss(2.0, 350.0, 300.0)
-    100.0
-    """
-    return hA * (T - T_ambient)
 
 
 @njit(cache=True)

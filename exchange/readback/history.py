@@ -18,7 +18,7 @@ from numba import njit
 from exchange.engine.flows import exchange_area, exchange_flow
 from exchange.engine.gas import states
 from exchange.engine.inflators import inflator_flow
-from exchange.engine.layout import CavityFloat, ExchangeInt, InflatorFloat, OpenState, StateColumn
+from exchange.engine.layout import CavityFloat, ExchangeInt, InflatorFloat, StateColumn, open_state_of
 
 __all__ = ["HistoryLayout", "history_rows", "history", "segment_states"]
 
@@ -87,16 +87,15 @@ def segment_states(modes, pop_vents) -> tuple:
     :class:`~exchange.network.DiscreteState` (None: the initial state)."""
     ne = len(pop_vents)
     eqs = np.zeros((len(modes), ne), dtype=np.int64)
-    ops = np.full((len(modes), ne), int(OpenState.OPEN), dtype=np.int64)
+    ops = np.zeros((len(modes), ne), dtype=np.int64)
     ivs = np.zeros((len(modes), ne), dtype=np.int64)
     for i, mode in enumerate(modes):
         for j in range(ne):
-            if mode is None:
-                ops[i, j] = OpenState.SHUT if pop_vents[j] else OpenState.OPEN
+            if mode is None:  # the initial state
+                ops[i, j] = open_state_of(pop_vents[j], False, False)
                 continue
             eqs[i, j] = mode.equalised[j]
-            ops[i, j] = OpenState.CLOSED if mode.closed[j] else \
-                OpenState.SHUT if pop_vents[j] and not mode.popped[j] else OpenState.OPEN
+            ops[i, j] = open_state_of(pop_vents[j], mode.popped[j], mode.closed[j])
             ivs[i, j] = mode.intervals[j] if mode.intervals[j] is not None else 0
     return eqs, ops, ivs
 
