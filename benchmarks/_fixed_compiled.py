@@ -1,7 +1,7 @@
 """Fixed-step forward Euler / Heun on the compiled network right-hand side (benchmark-only code).
 
 The fair fixed-step baseline for the compiled DOP853 default: the same numba right-hand side
-(``exchange.compiled_solver.rhs``), inputs read at t itself (no segment end), no error control, no stops at
+(``exchange.engine.rhs.rhs``), inputs read at t itself (no segment end), no error control, no stops at
 table kinks. States at the (sorted) evaluation times are interpolated linearly between steps inside the loop,
 so a million steps need no million-row history.
 """
@@ -12,7 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
-from exchange.compiled_solver import rhs
+from exchange.engine.rhs import rhs
 
 
 @njit(cache=True)

@@ -63,7 +63,7 @@ def run_fixed_compiled(case: Case, n_steps: int, scheme: str = "euler") -> Run:
     grid = case.grid[order]
 
     def solve():
-        fast.model[16][:] = fast.T_initial
+        fast.arrays.temperature_guess[:] = fast.T_initial
         return fixed_step_compiled(fast.model, fresh_state(case.model), case.t_end, n_steps, scheme == "heun", grid)
 
     solve()  # compile outside the timing

@@ -4,7 +4,7 @@ Layout of the unknowns: :mod:`exchange.network`. Per cavity its species masses c
 and its internal energy by their enthalpy flows, minus p·dV/dt and the heat it loses; the ledger integrates what
 crossed each exchange and each cavity's inflator mass and enthalpy, boundary work and heat lost, so the books
 close to round-off. The dynamic body adds its equation of motion (:mod:`exchange.engine.body`). The tests pair this
-with a naive assembly from the Python objects (``tests/engine_pairs.py``).
+with a naive assembly from the Python objects (``tests/exchange/engine/pairs.py``).
 """
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 engine.
 
 Per law: the compiled right-hand side equals the reference assembled from the Python objects along a trajectory
-(1e-12, tests.engine_pairs.assert_rhs_matches_reference), the compiled DOP853 and scipy's DOP853 on the same
+(1e-12, tests.exchange.engine.pairs.assert_rhs_matches_reference), the compiled DOP853 and scipy's DOP853 on the same
 network give the same events, discrete states and history column by column (1e-12 of each column's largest
 magnitude), and the history read back compiled equals the pointwise one. Plus closed forms: the prescribed flux
 moves exactly its mass, the tank-test inflator retraces its tank curve, and the laws are the numba kernels the
@@ -20,10 +20,10 @@ from cases.results.readback import history_columns, history_rows
 from cases.run.runner import run
 from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import integrate
-from tests.engine_pairs import (assert_rhs_matches_reference as assert_same_rhs, assert_same_history,
+from tests.exchange.engine.pairs import (assert_rhs_matches_reference as assert_same_rhs, assert_same_history,
                                 assert_same_on_both_integrators, both_integrators, scipy_dop853)
 from tests.scenes import tank
-from tests.test_compiled import law_scene
+from tests.exchange.engine.test_engine import law_scene
 from tests.test_exchange_scenes import fill_with_pop
 from tests.test_hydraulic import K, P0, oil_scene
 

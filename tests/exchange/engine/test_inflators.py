@@ -24,7 +24,7 @@ from cavity.integration import integrate
 from cavity.inflator_orifice import GAMMA_ITERATIONS, dual_pressure_state, pressure_mass_state
 from exchange.laws.orifice import choked_flow_factor
 from tests.scenes import tank
-from tests.engine_pairs import assert_rhs_matches_reference as assert_same_rhs, both_integrators
+from tests.exchange.engine.pairs import assert_rhs_matches_reference as assert_same_rhs, both_integrators
 
 AIR = {"name": "AIR", "molar_mass": 0.0289, "cp": [28.110, 1.967e-3, 4.802e-6, -1.966e-9, 0.0]}  # Abaqus deck
 START, SCALE, AREA, CD, V_TANK = 0.005, 0.9, 2e-5, 0.9, 0.06

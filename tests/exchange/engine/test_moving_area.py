@@ -27,7 +27,7 @@ def largest_difference(fast, slow) -> float:
 
 
 def test_bag_unfold_has_the_same_history_on_both_integrators():
-    """The library's bag (also in tests/test_compiled.py's library comparison): its vent is cut from the cavity's
+    """The library's bag (also in tests/exchange/engine/test_engine.py's library comparison): its vent is cut from the cavity's
     mesh series and blocked by the bag's own top sheet. The two integrators take the same steps; every column of the
     history agrees to 2.4e-8 of its peak (the vent's flow, where round-off in the error estimate grows while it
     nears equilibrium; 2.5e-10 in pressure), far inside ``ventsim check``'s 1e-6."""

@@ -1,6 +1,6 @@
 """The one engine: its compiled DOP853 against scipy's DOP853 stepping the same lowered network, its right-hand
 side against a reference assembled from the Python objects, and its history read back in one compiled call
-against rows built point by point (tests.engine_pairs).
+against rows built point by point (tests.exchange.engine.pairs).
 
 Whole runs of every library case (same steps, same events, the same pressures to round-off), the equalised mode
 of a two-way vent, pop vents, fabric, Graefe and linear-resistance laws; which integrator ran, laws of one's own
@@ -20,7 +20,7 @@ from cases.run.runner import run
 from cases.scene.files import load_scene, scene_from_dict
 from cavity.integration import SolverError, integrate
 from exchange.laws import orifice
-from tests.engine_pairs import (assert_rhs_matches_reference, assert_same_history, assert_same_on_both_integrators,
+from tests.exchange.engine.pairs import (assert_rhs_matches_reference, assert_same_history, assert_same_on_both_integrators,
                                 both_integrators, compiled_dop853, pressures)
 from tests.scenes import pop_hold_reset, tank
 from tests.test_exchange_scenes import fill_with_pop
@@ -31,7 +31,7 @@ LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fil
              "bag_unfold",  # a vent cut from a cavity mesh series: face areas that change between frames
              "deck_box_blowdown", "deck_vented_box_blockage", "deck_wang_nefske_bag",
              "deck_hydraulic_two_cavity"]  # hydraulic cavities, bulk viscosity and a volume-rate leakage table
-SEATED = ["relief_valve", "relief_valve_undamped"]  # seat contact: compared in tests/test_compiled_seat.py
+SEATED = ["relief_valve", "relief_valve_undamped"]  # seat contact: compared in tests/exchange/engine/test_seat.py
 
 
 def model_of(name):

@@ -18,7 +18,7 @@ from cases.run.runner import run
 from cases.scene.files import load_scene, read_scene_data, scene_from_dict
 from tests.test_contact_scenes import poppet_scene
 
-CASES = Path(__file__).resolve().parents[1] / "cases"
+CASES = Path(__file__).resolve().parents[3] / "cases"
 
 
 def both(scene, rtol=None):

@@ -11,7 +11,7 @@ from cases.model.build import build_model
 from cases.run.library import CASES, HERE
 from cases.results.readback import history_columns, history_rows
 from cases.scene.files import load_scene
-from tests.engine_pairs import assert_same_history as assert_same_readback, both_integrators
+from tests.exchange.engine.pairs import assert_same_history as assert_same_readback, both_integrators
 
 #: (case, pop pressure above ambient [Pa]): each pops mid-run (airbags peak near 1.6e5 Pa gauge, the seal near
 #: 2.1e5 Pa gauge after starting at 2.0e5 Pa)
