@@ -71,12 +71,13 @@ def _skipped(folder, names) -> set:
                                                         and os.path.isdir(os.path.join(folder, n)))}
 
 
-def copy_tree(dest: Path, rev: str | None) -> Path:
-    """The package as it is (``rev`` None: the working tree, else a git revision) in ``dest``, without caches."""
+def copy_tree(dest: Path, rev, source: Path = ROOT) -> Path:
+    """The package as it is (``rev`` None: the tree at ``source``, else a git revision) in ``dest``, without
+    caches."""
     if rev is None:
         for name in PACKAGES:
-            shutil.copytree(ROOT / name, dest / name, ignore=_skipped)
-        shutil.copy2(ROOT / "pyproject.toml", dest / "pyproject.toml")
+            shutil.copytree(source / name, dest / name, ignore=_skipped)
+        shutil.copy2(source / "pyproject.toml", dest / "pyproject.toml")
     else:
         archive = subprocess.run(["git", "-C", str(ROOT), "archive", rev], check=True, capture_output=True).stdout
         with tempfile.TemporaryFile() as f:
@@ -108,7 +109,8 @@ def measure(rev: str | None, scenes: list, top: int) -> dict:
     label = rev or "working tree"
     out = {"label": label}
     with tempfile.TemporaryDirectory() as tmp:
-        tree = copy_tree(Path(tmp) / "warm", rev)
+        pristine = copy_tree(Path(tmp) / "pristine", rev)  # the sources as they are now, for every copy below
+        tree = copy_tree(Path(tmp) / "warm", None, pristine)
         cpu, stdout = cpu_of(tree, ["-c", WARMUP])
         rows = json.loads(stdout.strip().splitlines()[-1])
         out["warmup"] = cpu
@@ -125,11 +127,11 @@ def measure(rev: str | None, scenes: list, top: int) -> dict:
         if engine.is_file():
             touch(engine)
             out["main job after editing exchange/engine/rhs.py"] = cpu_of(tree, MAIN_JOB)[0]
-        cold = copy_tree(Path(tmp) / "cold", rev)
+        cold = copy_tree(Path(tmp) / "cold", None, pristine)
         out["main job, cold (no warm-up)"] = cpu_of(cold, MAIN_JOB)[0]
         out["scenes"] = {}
         for name in scenes:
-            first = copy_tree(Path(tmp) / f"scene_{name}", rev)
+            first = copy_tree(Path(tmp) / f"scene_{name}", None, pristine)
             out["scenes"][name] = cpu_of(first, ["-c", SCENE, name])[0]
             shutil.rmtree(first)
     print(f"\n== {label}")

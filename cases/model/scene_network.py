@@ -20,8 +20,8 @@ import numpy as np
 
 from exchange.network import DiscreteState, Network
 
-from cases.model.scene_areas import GeometricAreas
-from cases.model.scene_seat import SeatModes
+from cases.model import scene_seat
+from cases.model.scene_lowering import lowered_geometry
 
 __all__ = ["SceneNetwork", "BodyState", "GeometricArea", "BodyForces"]
 
@@ -54,7 +54,7 @@ class GeometricArea:
 
 
 @dataclass
-class SceneNetwork(GeometricAreas, SeatModes, Network):
+class SceneNetwork(Network):
     """A Network plus bodies. ``areas``: per exchange a GeometricArea or None; ``body``: the dynamic body or None;
     ``pushed``: index of the cavity whose gauge pressure pushes the dynamic body; ``volume_slope(s)``: dV/ds of it;
     ``forces``: its spring and pressure area; ``contact``: its SeatContact (``held``: hard contact holds it now;
@@ -72,6 +72,19 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
     intervals: list = field(init=False, default_factory=list)
     held: bool = field(init=False, default=False)
     contact_log: list = field(init=False, default_factory=list)  # (t, kind, approach speed, pressure)
+
+    def lowered_geometry(self):
+        """Its geometry for the engine (:func:`cases.model.scene_lowering.lowered_geometry`)."""
+        return lowered_geometry(self)
+
+    def body_forces(self, t, y) -> tuple:
+        """(gas force, acceleration, reaction of a hard seat holding it at rest, gas and spring force) of the
+        dynamic body at (t, y) [N, m/s^2, N, N] (:func:`cases.model.scene_seat.body_forces`)."""
+        return scene_seat.body_forces(self, t, y)
+
+    def log_contact_events(self, events) -> None:
+        """Its contact log from a run's events (:func:`cases.model.scene_seat.log_contact_events`)."""
+        scene_seat.log_contact_events(self, events)
 
     def reset(self) -> None:
         super().reset()
@@ -99,7 +112,7 @@ class SceneNetwork(GeometricAreas, SeatModes, Network):
             if c is not None and c.hard and y[self.body_offset + 1] == 0.0 and c.held_sigma(0.0):
                 self.held = self.body_forces(0.0, y)[2] > 0.0
             elif c is not None and not c.hard and y[self.body_offset + 1] == 0.0:
-                y[self.body_offset] = self.rest_position(y)
+                y[self.body_offset] = scene_seat.rest_position(self, y)
         return y
 
     @property

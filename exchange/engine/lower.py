@@ -18,10 +18,11 @@ import numpy as np
 from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 from exchange.laws import registry
 
+from .geometry import Geometry
 from .hosted import register
 from .inflators import INFLATOR_KINDS, lower_inflators
-from .layout import (LAW_SLOTS, UNLOCKED, AreaKind, CavityFloat, CavityInt, Energy, ExchangeFloat, ExchangeInt, Fluid,
-                     ModelArrays, SeatLaw,
+from .layout import (LAW_SLOTS, UNLOCKED, AreaKind, BodyColumn, CavityFloat, CavityInt, Energy, ExchangeFloat,
+                     ExchangeInt, Fluid, ModelArrays, SeatLaw, SeatNode,
                      SeatState, StateColumn, VolumeKind, new_model)
 from .switch_table import switch_table
 from .tables import Tables
@@ -32,13 +33,11 @@ GAS_ENERGY = {"adiabatic": Energy.ADIABATIC, "isothermal": Energy.ISOTHERMAL, "h
 REAL_GAS_ENERGY = {"adiabatic": Energy.ADIABATIC, "heat_loss": Energy.HEAT_LOSS, "wall": Energy.WALL}
 
 
-def geometry_of(net) -> dict:
-    """The network's lowered geometry (``lowered_geometry()``: {"areas": {j: (steps x, areas y, scale table or None,
-    by displacement, switch scale, moving-surface pack or None)}, "volumes": {cavity name: (knots, coefficients (4,
-    pieces), by displacement)}, "body": the dynamic body's parameters or None, "contact": the seat or None}), or
-    empty."""
+def geometry_of(net) -> Geometry:
+    """The network's geometry for the engine (its ``lowered_geometry()``: :class:`exchange.engine.geometry.
+    Geometry`), or none."""
     lowered = getattr(net, "lowered_geometry", None)
-    return lowered() if lowered is not None else {"areas": {}, "volumes": {}}
+    return lowered() if lowered is not None else Geometry()
 
 
 def unsupported_reason(net) -> str | None:
@@ -50,7 +49,7 @@ def unsupported_reason(net) -> str | None:
         return f"{type(net).__name__} is not a plain Network"
     if lowered is not None and isinstance(lowered(), str):
         return lowered()
-    volumes = geometry_of(net).get("volumes", {})
+    volumes = geometry_of(net).volumes
     for cav in net.cavities:
         kind = getattr(cav, "kind", "gas")
         if kind == "hydraulic" and cav.inflators:
@@ -78,14 +77,14 @@ def has_hosted_parts(net) -> bool:
 def _cavities(net, tables, host, geometry) -> tuple:
     """(cavity_int, cavity_float) of the network's cavities."""
     ints, floats = [], []
-    splines = geometry.get("volumes", {})
+    splines = geometry.volumes
     for cav, k, c in zip(net.cavities, net.offsets, net.ledger_offsets):
         vol, kind_name = cav.volume, getattr(cav, "kind", "gas")
         fluid = {"hydraulic": Fluid.HYDRAULIC, "realgas": Fluid.REAL_GAS}.get(kind_name, Fluid.GAS)
         if cav.name in splines:
-            knots, coefficients, by_body = splines[cav.name]
-            kind, table = (VolumeKind.SPLINE_OF_BODY if by_body else VolumeKind.SPLINE_OF_TIME), \
-                tables.add_spline(knots, coefficients)
+            spline = splines[cav.name]
+            kind = VolumeKind.SPLINE_OF_BODY if spline.by_body else VolumeKind.SPLINE_OF_TIME
+            table = tables.add_spline(spline.knots, spline.coefficients)
         elif isinstance(vol, FixedVolume):
             kind, table = VolumeKind.FIXED, -1
         elif isinstance(vol, TableVolume):
@@ -99,7 +98,7 @@ def _cavities(net, tables, host, geometry) -> tuple:
         row = [0] * len(CavityInt)
         row[CavityInt.OFFSET], row[CavityInt.ENERGY], row[CavityInt.VOLUME] = k, energy, kind
         row[CavityInt.VOLUME_TABLE], row[CavityInt.LEDGER], row[CavityInt.SPECIES] = table, c, len(cav.initial_masses)
-        row[CavityInt.BODY_OFFSET] = int(geometry["body"][0]) if kind == VolumeKind.SPLINE_OF_BODY else -1
+        row[CavityInt.BODY_OFFSET] = geometry.body.offset if kind == VolumeKind.SPLINE_OF_BODY else -1
         row[CavityInt.FLUID] = fluid
         row[CavityInt.TEMPERATURE_TABLE] = tables.add(cav.temperature) if liquid else -1
         row[CavityInt.HOST] = host if fluid == Fluid.REAL_GAS else -1
@@ -121,24 +120,25 @@ def _liquid(cav) -> tuple:
             cav.thermal_expansion)
 
 
-def _area(tables, geometric) -> tuple:
-    """(area table, scale table, AreaKind, switch scale) of an exchange's lowered geometric area, or of none."""
-    if geometric is None:
+def _area(tables, area) -> tuple:
+    """(area table, scale table, AreaKind, switch scale) of an exchange's blocked area (AreaSteps), or of none."""
+    if area is None:
         return -1, -1, AreaKind.CONSTANT, 1.0
-    x, y, scale_table, by_displacement, switch_scale, moving = geometric
-    steps = tables.add_arrays(np.concatenate([[-np.inf], x]), y if moving is None else np.arange(len(x) + 1.0))
+    x, moving = area.crossings, area.moving
+    steps = tables.add_arrays(np.concatenate([[-np.inf], x]), area.areas if moving is None else
+                              np.arange(len(x) + 1.0))
     if moving is not None:  # a surface on a vertex trajectory: the steps give the interval, then its pack
         tables.add_arrays(np.zeros(len(moving)), moving)
-    scale = tables.add(scale_table) if scale_table is not None else -1
+    scale = tables.add(area.scale) if area.scale is not None else -1
     kind = AreaKind.MOVING_SURFACE if moving is not None else \
-        AreaKind.STEPS_OF_BODY if by_displacement else AreaKind.STEPS_OF_TIME
-    return steps, scale, kind, switch_scale
+        AreaKind.STEPS_OF_BODY if area.by_body else AreaKind.STEPS_OF_TIME
+    return steps, scale, kind, area.switch_scale
 
 
 def _exchanges(net, tables, host, geometry) -> tuple:
     """(exchange_int, exchange_float, law_int, law_float) of the network's exchanges."""
     ints, floats, law_ints, law_floats = [], [], [], []
-    geometric = geometry.get("areas", {})
+    geometric = geometry.areas
     for j, ex in enumerate(net.exchanges):
         act = ex.activation
         window = act is not None
@@ -172,19 +172,20 @@ def _area_at_activation(net, j) -> float:
 
 def _body(geometry) -> np.ndarray:
     """The dynamic body (BodyColumn; offset −1: none)."""
-    body = geometry.get("body")
-    return np.array(body if body is not None else (-1.0,) + (0.0,) * 9, dtype=float)
+    if geometry.body is None:
+        none = np.zeros(len(BodyColumn))
+        none[BodyColumn.OFFSET] = -1.0
+        return none
+    return geometry.body.array()
 
 
 def _seat(geometry) -> tuple:
     """(seat_state, seat_law, seat_nodes, seat_kinks) of the network's seat contact (zeros: none)."""
-    seat = geometry.get("contact")
+    seat = geometry.seat
     if seat is None:
-        return np.zeros(len(SeatState)), np.zeros(len(SeatLaw)), np.zeros((0, 4)), np.zeros(0)
-    head, nodes, kinks = seat
-    return (np.ascontiguousarray(head[:len(SeatState)], dtype=float),
-            np.ascontiguousarray(head[len(SeatState):], dtype=float),
-            np.ascontiguousarray(nodes, dtype=float), np.ascontiguousarray(kinks, dtype=float))
+        return np.zeros(len(SeatState)), np.zeros(len(SeatLaw)), np.zeros((0, len(SeatNode))), np.zeros(0)
+    return (seat.state(), np.ascontiguousarray(seat.law, dtype=float), np.ascontiguousarray(seat.nodes, dtype=float),
+            np.ascontiguousarray(seat.kinks, dtype=float))
 
 
 def lower(net):

@@ -98,7 +98,7 @@ def record_segment(M, segs, nseg, first, end, t_min, t_max, mode):
 def rederive_intervals(M, y):
     """The area interval of each exchange re-derived from the body's displacement when it lies outside by more than
     the slack (a crossing passed inside the step of a turning point is caught here, at the restart, so a release is
-    never missed; the slack, :data:`cases.model.scene_areas.REDERIVE_SLACK` of the track's span, is the solver's
+    never missed; the slack, :data:`cases.model.scene_lowering.REDERIVE_SLACK` of the track's span, is the solver's
     error at a restart on a crossing event)."""
     bd, ei, tx, ti = M.body, M.exchange_int, M.table_x, M.table_index
     s, slack = y[int(bd[BodyColumn.OFFSET])], bd[BodyColumn.SLACK]

@@ -15,7 +15,8 @@ K = SwitchKind
 
 
 def switch_table(net, geometry) -> tuple:
-    """(kinds, targets, labels, kink_int, kink_x) of a network with its lowered geometry: per exchange its
+    """(kinds, targets, labels, kink_int, kink_x) of a network with its geometry (:class:`exchange.engine.geometry.
+    Geometry`): per exchange its
     choke, join, one-way reversal or equalise/release, its law's kinks (the registry's), pop, pop-drop, pop-hold and
     close switches; the dynamic body's turning point, area crossings and spline knots; the seat's switch and the
     kinks of its force."""
@@ -47,22 +48,22 @@ def switch_table(net, geometry) -> tuple:
                 add(kind, j, name)
         if act is not None and act.close_pressure is not None:
             add(K.CLOSE, j, name)
-    if geometry.get("body") is not None:  # the dynamic body's turning point, area crossings and spline knots
+    if geometry.body is not None:  # the dynamic body's turning point, area crossings and spline knots
         add(K.TURN, 0, net.body.name)
-        for j, area in geometry["areas"].items():
-            if area[3]:
+        for j, area in geometry.areas.items():
+            if area.by_body:
                 add(K.CROSSING_DOWN, j, net.exchanges[j].name)
                 add(K.CROSSING_UP, j, net.exchanges[j].name)
-        pushed = int(geometry["body"][3])
-        if pushed >= 0 and net.cavities[pushed].name in geometry["volumes"]:
+        pushed = geometry.body.pushed
+        if pushed >= 0 and net.cavities[pushed].name in geometry.volumes:
             for kind in (K.KNOT_DOWN, K.KNOT_UP):
                 add(kind, pushed, net.cavities[pushed].name)
-    seat = geometry.get("contact")
+    seat = geometry.seat
     if seat is not None:  # the seat switch of hard contact, then the kinks of the seat's force
         name = net.contact.name
-        if net.contact.hard:
+        if seat.hard:
             add(K.SEAT, 0, name)
-        for i in range(len(seat[2])):
+        for i in range(len(seat.kinks)):
             add(K.SEAT_KINK, i, name, f"kink-{i}")
     kink_int = np.array([(j, v) for j, v, _ in kinks], dtype=np.int64).reshape(-1, 2)
     kink_x = np.array([x for _, _, x in kinks], dtype=float)
