@@ -17,7 +17,7 @@ from cavity.inflator_orifice import DualPressureInflator, PressureMassInflator
 from cavity.integration import SolverOptions
 from cavity.species import Species, builtin_species, species_from_coolprop
 from cavity.volume import FixedVolume, MeshError, ScaledMeshVolume, SeriesVolume, TableVolume, closed_mesh_volume
-from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
+from exchange.network.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, Network
 from exchange.network.activation import Activation
 from exchange.laws import registry
 from exchange.network.vent import Ambient, Exchange

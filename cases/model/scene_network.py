@@ -18,7 +18,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from exchange.network import DiscreteState, Network
+from exchange.network.discrete_state import DiscreteState
+from exchange.network.network import Network
 
 from cases.model import scene_seat
 from cases.model.scene_lowering import lowered_geometry

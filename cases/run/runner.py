@@ -9,7 +9,7 @@ import numpy as np
 
 from cavity.caution import VentsimWarning
 from cavity.integration import SolverError, Trajectory, integrate
-from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
+from exchange.network.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 
 from cases.model.build import Model, build_model, unique_messages
 from cases.model.build_leak import blockage_rule

@@ -11,12 +11,13 @@ import os
 import numpy as np
 
 from cavity.integration import NO_TEMPERATURE
-from exchange.network import DiscreteState
+from exchange.network.discrete_state import DiscreteState
 
 from .hosted import host_of
+from .segments import modes_of
 from .inflators import warn_clamped
 from .layout import (UNLOCKED, AreaKind, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState, SegmentColumn,
-                     SwitchKind, flags_of, open_state_of, segment_blocks)
+                     SwitchKind, open_state_of, segment_blocks)
 
 __all__ = ["Engine"]
 
@@ -31,7 +32,7 @@ class Engine:
     def __init__(self, model, arrays, labels, T_initial, network, host: int = -1):
         self.model, self.arrays, self.labels, self.T_initial = model, arrays, labels, T_initial
         self.network, self.host = network, host
-        self._modes, self._run_modes = {}, []
+        self.modes, self._run_modes = {}, []  # modes: each distinct DiscreteState once
 
     @property
     def kinds(self) -> np.ndarray:
@@ -57,7 +58,7 @@ class Engine:
         self.unlock_pieces()
         warn_clamped(net, a.inflator_int)
         segs = out[4]
-        self._run_modes = self._modes_of(segs)
+        self._run_modes = modes_of(self, segs)
         if getattr(net, "contact", None) is not None:
             from .events import event_states
 
@@ -108,7 +109,7 @@ class Engine:
         row = np.empty((1, segment_blocks(self.arrays.open_state.size)[4]))
         bits = sum(1 << j for j, e in enumerate(self.arrays.equalised.tolist()) if e)
         record_segment(self.model, row, 0, 0, 0, float(t_min), float(t_min), bits)
-        return self._modes_of(row)[0]
+        return modes_of(self, row)[0]
 
     def failure(self) -> str:
         """Why the latest right-hand side failed: a hosted part's exception (:mod:`exchange.engine.hosted`), else no
@@ -136,45 +137,6 @@ class Engine:
                 ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = base or 0.0
             elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY:
                 ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = math.nan if base is None else base
-
-    def _modes_of(self, segs) -> list:
-        """The network's DiscreteState of each row of a segment table (:func:`exchange.engine.modes.
-        record_segment`)."""
-        a, ne = self.arrays, len(self.network.exchanges)
-        opened, hold, interval, held, _ = (int(c) for c in segment_blocks(ne))
-        pop_vents = (a.exchange_int[:, ExchangeInt.POP] == 1).tolist()
-        by_body = (a.exchange_int[:, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY).tolist()
-        bits_c, t_c = int(SegmentColumn.EQUALISED), int(SegmentColumn.T_MIN)
-        out = []
-        for row in np.asarray(segs).tolist():
-            bits = int(row[bits_c])
-            flags = [flags_of(int(state), pop_vents[j]) for j, state in enumerate(row[opened:opened + ne])]
-            popped, closed = tuple(f[0] for f in flags), tuple(f[1] for f in flags)
-            holding = tuple(None if h != h else h for h in row[hold:hold + ne])
-            intervals = tuple(int(i) if b else None for i, b in zip(row[interval:interval + ne], by_body))
-            key = (bits, popped, closed, holding, intervals, row[t_c], bool(row[held]))
-            mode = self._modes.get(key)
-            if mode is None:
-                mode = self._modes[key] = DiscreteState(
-                    popped, holding, self._areas_at_activation(popped, key[5]),
-                    tuple(bool(bits >> j & 1) for j in range(ne)), closed, intervals, key[6])
-            out.append(mode)
-        return out
-
-    def _areas_at_activation(self, popped, t_min) -> tuple:
-        """``Network.area_at_activation`` in a segment starting at t_min: a popped vent's area at its pop; the area
-        at the open time of a DELTA LEAKAGE AREA opened by time once a segment starts at or after it
-        (:func:`exchange.engine.segment.begin_segment` sets it there); else None."""
-        ei, ef, out = self.arrays.exchange_int, self.arrays.exchange_float, []
-        for j, ex in enumerate(self.network.exchanges):
-            base = float(ef[j, ExchangeFloat.AREA_AT_ACTIVATION])
-            if popped[j]:
-                out.append(base)
-            elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.POP] == 0 and t_min >= ex.activation.open_time:
-                out.append(base)
-            else:
-                out.append(None)
-        return tuple(out)
 
     def segment_mode(self, code) -> DiscreteState:
         """The network's discrete state during segment ``code`` of the latest :meth:`run`."""

@@ -1,5 +1,3 @@
-"""A scene's gas network: cavities joined by exchanges (:mod:`exchange.network.vent`), their activation rules, the
-unknowns' layout and the discrete state, and how it lowers onto the engine."""
-from .network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE, DiscreteState, Network
-
-__all__ = ["Network", "DiscreteState", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
+"""A scene's gas network: cavities joined by exchanges (:mod:`exchange.network.vent`), their activation rules
+(:mod:`exchange.network.activation`), the unknowns' layout and the discrete state (:mod:`exchange.network.network`,
+:mod:`exchange.network.discrete_state`), and how it lowers onto the engine (:mod:`exchange.network.lowering`)."""

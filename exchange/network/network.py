@@ -18,30 +18,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .discrete_state import DiscreteState
 from .lowering import NetworkLowering
 from .vent import GasPoint
 
-__all__ = ["Network", "DiscreteState", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
+__all__ = ["Network", "LEDGER_PER_EXCHANGE", "LEDGER_PER_CAVITY"]
 
 LEDGER_PER_EXCHANGE = 2  # mass, energy
 LEDGER_PER_CAVITY = 4  # inflator mass, inflator enthalpy, boundary work, heat lost
-
-
-@dataclass(frozen=True)
-class DiscreteState:
-    """The discrete state of a network during one segment (what :meth:`Network.snapshot` returns and a trajectory
-    keeps per segment). Per exchange: whether its pop condition has been met, when its hold started (None: not
-    holding), its area when it opened (DELTA LEAKAGE AREA; None: not yet), whether it is held closed (equalised),
-    whether it closed for good at its close pressure, and the dynamic body's area interval (None: its area does not
-    follow the body); whether hard contact holds the dynamic body on its seat."""
-
-    popped: tuple
-    holding_since: tuple
-    area_at_activation: tuple
-    equalised: tuple
-    closed: tuple
-    intervals: tuple
-    held: bool = False
 
 
 @dataclass

@@ -204,7 +204,7 @@ area = 4e-6
 def test_discharge_with_a_wall_closes_the_energy_books(tmp_path, layers):
     """N2/Ar 0.8/0.2 from 300 bar through an orifice, natural convection to a lumped or a 4-layer wall: ΔU =
     −outflow − heat and Σ C_j ΔT_j = heat in − heat out, each to 1e-12; the species keep their fractions."""
-    from exchange.network import LEDGER_PER_EXCHANGE
+    from exchange.network.network import LEDGER_PER_EXCHANGE
 
     r = _run(tmp_path, WALL.replace("wall_length = 1.0\n", "wall_length = 1.0\n" + layers), end=30.0, rtol=1e-9)
     net = r.model.network

@@ -8,7 +8,7 @@ import pytest
 from cases.model.build import build_model
 from cases.run.runner import run
 from cases.scene.files import load_scene
-from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
+from exchange.network.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 
 VALIDATION = Path(__file__).resolve().parents[2] / "cases" / "validation"
 

@@ -24,7 +24,7 @@ from cases.results.readback import cavity_peaks, cavity_summary, history_columns
 from cavity.integration import integrate
 from cavity.tolerances import R_UNIVERSAL
 from exchange.engine.rhs import rhs as compiled_rhs
-from exchange.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
+from exchange.network.network import LEDGER_PER_CAVITY, LEDGER_PER_EXCHANGE
 from exchange.readback.values import cavity_states, exchange_values, load_mode
 from exchange.network.vent import GasPoint
 from cavity.hydraulic import hydraulic_pressure
