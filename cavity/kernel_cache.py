@@ -23,7 +23,8 @@ __all__ = ["install", "closure", "stamp"]
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = ("cavity", "blockage", "exchange", "cases")
-_IMPORT = re.compile(r"^\s*(?:from\s+(\.*[\w.]*)\s+import\s+\(?([\w\s,.*]+)|import\s+([\w.]+))", re.M)
+_IMPORT = re.compile(r"^[ \t]*(?:from[ \t]+(\.*[\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]*)|import[ \t]+([\w.]+))",
+                     re.M)
 
 
 def _module_file(name: str) -> Path | None:
@@ -56,7 +57,8 @@ def _imports(path: Path) -> tuple:
             dots = len(source) - len(source.lstrip("."))
             base = package.split(".")[:len(package.split(".")) - dots + 1] if dots else []
             stem = ".".join(base + ([source.lstrip(".")] if source.lstrip(".") else []))
-            candidates = [stem] + [f"{stem}.{n.strip()}" for n in names.replace("(", "").split(",") if n.strip()]
+            listed = (n.split(" as ")[0].strip() for n in names.strip("()\\ \n").split(","))
+            candidates = [stem] + [f"{stem}.{n}" for n in listed if n.isidentifier()]
         for name in candidates:
             f = _module_file(name)
             if f is not None and f != path:

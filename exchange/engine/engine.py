@@ -13,7 +13,7 @@ import numpy as np
 from cavity.integration import NO_TEMPERATURE
 from exchange.network.discrete_state import DiscreteState
 
-from .hosted import host_of
+from .host import host_of
 from .segments import modes_of
 from .inflators import warn_clamped
 from .layout import (UNLOCKED, AreaKind, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState, SegmentColumn,

@@ -121,6 +121,7 @@ class ExchangeFloat(IntEnum):
     SWITCH_SCALE = 5  # length scale of its area crossings [m]
     AREA_AT_ACTIVATION = 6  # DELTA LEAKAGE AREA's base [m^2] (NaN: set when it opens)
     CLOSE_PRESSURE = 7  # of the downstream cavity [Pa], 0: none
+    JOIN_BELOW = 8  # |Δp|/p where its law changes form (the orifice law's C¹ join: a switch), 0: none
 
 
 class StateColumn(IntEnum):

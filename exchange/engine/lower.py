@@ -19,7 +19,7 @@ from cavity.volume import FixedVolume, ScaledMeshVolume, TableVolume
 from exchange.laws import registry
 
 from .geometry import Geometry
-from .hosted import register
+from .host import register
 from .inflators import INFLATOR_KINDS, lower_inflators
 from .layout import (LAW_SLOTS, UNLOCKED, AreaKind, BodyColumn, CavityFloat, CavityInt, Energy, ExchangeFloat,
                      ExchangeInt, Fluid, ModelArrays, SeatLaw, SeatNode,
@@ -151,7 +151,8 @@ def _exchanges(net, tables, host, geometry) -> tuple:
                      int(window and act.delta_area), int(bool(ex.law.prescribed))))
         floats.append((ex.area, act.open_time if window else 0.0, act.close_time if window else math.inf,
                        act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, switch_scale,
-                       _area_at_activation(net, j), (act.close_pressure or 0.0) if window else 0.0))
+                       _area_at_activation(net, j), (act.close_pressure or 0.0) if window else 0.0,
+                       float(getattr(ex.law, "join_below", 0.0))))
         law_ints.append(li)
         law_floats.append(lf)
     ne = len(net.exchanges)

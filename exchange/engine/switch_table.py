@@ -32,7 +32,7 @@ def switch_table(net, geometry) -> tuple:
         driven = not law.prescribed  # a prescribed flux has no pressure-driven switch
         if driven and law.pneumatic:
             add(K.CHOKE, j, name)
-        if driven and getattr(law, "orifice_join", False):
+        if driven and getattr(law, "join_below", 0.0) > 0.0:
             add(K.JOIN, j, name)
         if driven and ex.downstream is None and not ex.two_way:
             add(K.REVERSAL, j, name)

@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 from exchange.network.equalised import EQUALISED_BELOW, RELEASED_ABOVE
-from exchange.laws.orifice import LINEAR_BELOW, critical_pressure_ratio
+from cavity.isentropic import critical_pressure_ratio
 
 from .body import seat_switch
 from .gas import states
@@ -31,7 +31,7 @@ K, P = SwitchKind, StateColumn.P
 @njit(cache=True)
 def choke_ratio_of(M, i):
     """p*/p0 [-] of side i (−1: ambient): a real-gas cavity's from its equation of state (hosted), else the ideal
-    gas's :func:`exchange.laws.orifice.critical_pressure_ratio` of its γ (:meth:`exchange.network.vent.GasPoint.
+    gas's :func:`cavity.isentropic.critical_pressure_ratio` of its γ (:meth:`exchange.network.vent.GasPoint.
     choke_ratio`)."""
     if i < 0:
         return critical_pressure_ratio(M.ambient[AmbientColumn.GAMMA])
@@ -43,7 +43,7 @@ def choke_ratio_of(M, i):
 @njit(cache=True)
 def exchange_switch(M, kind, j):
     """An exchange's switch on the states in ``M.state`` [-]: CHOKE (p_low − r*·p_high)/p_high, where the orifice
-    law's second derivative jumps; REVERSAL Δp/p_max; JOIN the orifice law's C¹ join, |Δp|/p_max/LINEAR_BELOW − 1;
+    law's second derivative jumps; REVERSAL Δp/p_max; JOIN the law's C¹ join, |Δp|/p_max/JOIN_BELOW − 1;
     EQUALISE and RELEASE |Δp|/p_max over their levels (:mod:`exchange.network.equalised`) − 1; POP and POP_DROP
     (Δp − p_pop)/max(p_pop, p_b); CLOSE (p_b − p_close)/p_close."""
     st, amb, ei, ef = M.state, M.ambient, M.exchange_int, M.exchange_float
@@ -55,7 +55,7 @@ def exchange_switch(M, kind, j):
     if kind == K.REVERSAL:
         return (pa - pb) / max(pa, pb)
     if kind == K.JOIN:
-        return abs(pa - pb) / max(pa, pb) / LINEAR_BELOW - 1.0
+        return abs(pa - pb) / max(pa, pb) / ef[j, ExchangeFloat.JOIN_BELOW] - 1.0
     if kind == K.EQUALISE or kind == K.RELEASE:
         return abs(pa - pb) / max(pa, pb) / (EQUALISED_BELOW if kind == K.EQUALISE else RELEASED_ABOVE) - 1.0
     if kind == K.POP or kind == K.POP_DROP:

@@ -30,7 +30,7 @@ from exchange.engine.layout import LAW_SIGNATURE, StateColumn, side
 
 from .discharge import (CD_KEYS, cd_breakpoints, cd_of_values, cd_value, discharge_coefficient, lowered_cd,
                         lowers_cd, pressure_kinks)
-from .orifice import orifice_mass_flow
+from .orifice import LINEAR_BELOW, orifice_mass_flow
 from .spec import LawKey, LawSpec
 
 __all__ = [
@@ -240,7 +240,7 @@ class FabricLeakageLaw:
     open_fraction: float = 1.0
     pneumatic = True
     prescribed = False
-    orifice_join = True
+    join_below = LINEAR_BELOW  # the orifice law's C¹ join at |Δp|/p = LINEAR_BELOW: a switch there
 
     def mass_flow(self, up, p_down, area, t):
         cd = discharge_coefficient(self.discharge_coefficient, up.p, t)

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from numba import njit
 
-from cavity.isentropic import choked_flow_factor
+from cavity.isentropic import choked_flow_factor, critical_pressure_ratio
 from exchange.engine.layout import LAW_SIGNATURE, StateColumn, side
 
 from .discharge import CD_KEYS, cd_breakpoints, cd_of_values, cd_value, discharge_coefficient, lowered_cd, lowers_cd, pressure_kinks
@@ -25,33 +25,6 @@ __all__ = ["critical_pressure_ratio", "orifice_mass_flow", "choked_flow_factor",
 #: centimetres is near laminar flow anyway. It keeps the law Lipschitz at Δp = 0, so two cavities equalise
 #: exponentially instead of landing on Δp = 0 in finite time and chattering across it.
 LINEAR_BELOW = 1e-4
-
-
-@njit(cache=True)
-def critical_pressure_ratio(gamma: float) -> float:
-    r"""Downstream/upstream pressure ratio below which an isentropic orifice is choked [-].
-
-    .. math:: \frac{p_c}{p_e} = \left(\frac{2}{\gamma + 1}\right)^{\gamma/(\gamma - 1)}
-
-    Parameters
-    ----------
-    gamma : float
-        Ratio of specific heats cp/cv of the upstream gas [-], > 1.
-
-    Notes
-    -----
-    Isentropic expansion of an ideal gas to sonic speed at the throat.
-
-    References
-    ----------
-    Abaqus Analysis User's Guide, "Fluid exchange definition", orifice flow; Anderson, *Modern Compressible Flow*, eq. 5.20.
-
-    Examples
-    --------
-    >>> round(critical_pressure_ratio(1.4), 6)
-    0.528282
-    """
-    return (2.0 / (gamma + 1.0)) ** (gamma / (gamma - 1.0))
 
 
 def is_choked(p_up: float, p_down: float, gamma: float) -> bool:
@@ -161,7 +134,7 @@ class OrificeLaw:
     discharge_coefficient: object = 1.0
     pneumatic = True
     prescribed = False
-    orifice_join = True  # the law changes form at Δp/p = LINEAR_BELOW: a switch there
+    join_below = LINEAR_BELOW  # the law changes form at |Δp|/p = LINEAR_BELOW: a switch there
 
     def mass_flow(self, up, p_down, area, t):
         cd = discharge_coefficient(self.discharge_coefficient, up.p, t)

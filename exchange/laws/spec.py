@@ -33,7 +33,7 @@ class LawSpec:
         Its names in a scene's ``law`` key.
     law : type
         Its Python class (``mass_flow(up, p_down, area, t)``; class attributes ``pneumatic``, ``prescribed``,
-        ``orifice_join``).
+        ``join_below``: the |Δp|/p where it changes form, a switch there).
     kernel : numba dispatcher
         Its engine kernel, :data:`exchange.engine.layout.LAW_SIGNATURE`.
     keys : tuple of LawKey

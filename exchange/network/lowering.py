@@ -41,7 +41,7 @@ def _hosted_here(fast, net) -> bool:
     it was copied or unpickled from): else it is lowered again (:mod:`exchange.hosted`)."""
     if fast is None or fast.host < 0:
         return True
-    from exchange.engine.hosted import HOSTS
+    from exchange.engine.host import HOSTS
 
     host = HOSTS.get(fast.host)
     return host is not None and host.network is net

@@ -10,7 +10,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .activation import Activation
-from exchange.laws.orifice import OrificeLaw, critical_pressure_ratio
+from cavity.isentropic import critical_pressure_ratio
+from exchange.laws.orifice import OrificeLaw
 
 __all__ = ["GasPoint", "Ambient", "OrificeLaw", "Exchange"]  # OrificeLaw re-exported from .laws.orifice
 

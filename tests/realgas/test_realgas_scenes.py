@@ -270,7 +270,7 @@ def test_a_copied_network_hosts_its_own_parts(n2_run):
     import copy
     import gc
 
-    from exchange.engine.hosted import HOSTS
+    from exchange.engine.host import HOSTS
 
     net = n2_run.model.network
     fast = net.compiled_solver()
