@@ -1,7 +1,9 @@
 """Compile ventsim's numba kernels ahead of the first run: ``python3 -m cases.warmup`` (``bash .ci/setup`` runs it
 after installing). It runs a small scene on the compiled network path, one with a blocked leakage surface and
-one whose vent moves with its cavity's mesh series (the moving-area law Python calls too), quietly; numba caches the machine code beside the sources (``__pycache__``), so the first ``ventsim run`` starts
-at once instead of compiling for about a minute. With the cache filled it takes a few seconds."""
+one whose vent moves with its cavity's mesh series (the moving-area law Python calls too), quietly; numba caches the
+machine code beside the sources (``__pycache__``), so the first ``ventsim run`` starts at once instead of compiling.
+Every scene runs on the same compiled engine, so these three compile all of it. From an empty cache it took 41 s of
+CPU on the development machine (``benchmarks/compile.py`` measures it); with the cache filled, a few seconds."""
 from __future__ import annotations
 
 import sys
@@ -17,8 +19,8 @@ def main() -> int:
     from cases.run.runner import run
     from cases.scene.files import load_scene
 
-    print("ventsim: compiling the numba kernels ahead of the first run (about 1.5 min of CPU the first time)",
-          file=sys.stderr, flush=True)
+    print("ventsim: compiling the numba kernels ahead of the first run (41 s of CPU measured from an empty cache; "
+          "seconds when cached)", file=sys.stderr, flush=True)
     start = time.process_time()
     for name in SCENES:
         run(build_model(load_scene(HERE / name)))

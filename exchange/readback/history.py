@@ -60,10 +60,12 @@ def history_rows(M, ys, idx, eqs, ops, ivs, times, ycols):
     i0 = e0 + 2 * ne
     width = i0 + 2 * ni
     out = np.empty((times.size, width + ycols.size))
-    st, ok = M.state, True
+    st, ok, loaded = M.state, True, -1
     for r in range(times.size):
         t, y, i = times[r], ys[r], idx[r]
-        M.equalised[:], M.open_state[:], M.interval[:] = eqs[i], ops[i], ivs[i]
+        if i != loaded:  # the discrete state of the row's segment
+            M.equalised[:], M.open_state[:], M.interval[:] = eqs[i], ops[i], ivs[i]
+            loaded = i
         ok &= states(M, t, y)
         out[r, 0] = t
         for c in range(nc):
