@@ -66,40 +66,43 @@ def exponential_gap(p, h0, p0, u_c=0.0):
 
 
 def persson_gap(p, u0, p_star, u_c=0.0, h_max=math.inf):
-    r"""Persson's logarithmic gap law, minus the percolation gap, capped at first touch [m].
+    r"""Persson's logarithmic gap law, minus the percolation gap, smoothly capped at first touch [m].
 
-    .. math:: h(p) = \min\left(\max\left(u_0 \ln\frac{p^*}{p} - u_c,\ 0\right),\ h_{max}\right)
+    .. math:: h(p) = \max\left(u_0 \ln\frac{p^*}{p + p_t} - u_c,\ 0\right),
+              \qquad p_t = p^*\, e^{-(h_{max} + u_c)/u_0}
 
     Parameters
     ----------
     p : float or array
-        Contact pressure [Pa] (p <= 0 gives h_max).
+        Contact pressure [Pa] (negative counts as 0).
     u0 : float
         Separation scale [m] > 0 (of the order of the rms roughness; Persson: u0 = γ·h_rms).
     p_star : float
         Pressure scale p* = β·E* [Pa] > 0 (E* the effective modulus, β from the roughness spectrum).
     u_c : float
-        Percolation gap [m] >= 0: the channel closes at p_c = p*·exp(−u_c/u0).
+        Percolation gap [m] >= 0: the channel closes at p_c = p*·exp(−u_c/u0) − p_t.
     h_max : float
-        Channel height at vanishing pressure [m] > 0 (the logarithm diverges as p → 0; inf: uncapped).
+        Channel height at zero pressure [m] > 0 (inf: Persson's law unmodified, infinite at p = 0).
 
     Notes
     -----
     Persson's contact mechanics gives the mean interfacial separation u = u0·ln(p*/p) for p ≪ p* (B. N. J.
-    Persson, Phys. Rev. Lett. 99 (2007) 125502; J. Phys.: Condens. Matter 20 (2008) 315011). The flow channel is
-    the separation above the percolation gap (module notes).
+    Persson, Phys. Rev. Lett. 99 (2007) 125502; J. Phys.: Condens. Matter 20 (2008) 315011). The logarithm diverges
+    as p → 0; adding p_t (a few hundred pascals for typical parameters) keeps h finite and smooth there, equal to
+    h_max at first touch, and changes h by u0·ln(1 + p_t/p), negligible where p ≫ p_t. The flow channel is the
+    separation above the percolation gap (module notes).
 
     Examples
     --------
     >>> round(persson_gap(1e5, 1e-6, 1e8) * 1e6, 6)  # u0·ln(1000)
     6.907755
-    >>> persson_gap(0.0, 1e-6, 1e8, h_max=20e-6), persson_gap(2e7, 1e-6, 1e8, u_c=2e-6)
+    >>> round(persson_gap(0.0, 1e-6, 1e8, h_max=20e-6), 15), persson_gap(2e7, 1e-6, 1e8, u_c=2e-6)
     (2e-05, 0.0)
     """
     q = as_pressure(p)
+    p_t = p_star * math.exp(-(h_max + u_c) / u0) if math.isfinite(h_max) else 0.0
     with np.errstate(divide="ignore"):
-        u = u0 * np.log(p_star / q)
-    h = np.minimum(np.maximum(u - u_c, 0.0), h_max)
+        h = np.maximum(u0 * np.log(p_star / (q + p_t)) - u_c, 0.0)
     return _shaped(h, p)
 
 
@@ -215,17 +218,17 @@ class PerssonGap:
         return persson_gap(p, self.u0, self.p_star, self.u_c, self.h_max)
 
     def closing_pressure(self):
-        """p_c = p*·exp(−u_c/u0) [Pa].
+        """p_c = p*·exp(−u_c/u0) − p_t [Pa].
 
         >>> round(PerssonGap(1e-6, 1e8, 2e-6).closing_pressure())
         13533528
         """
-        return self.p_star * math.exp(-self.u_c / self.u0)
+        p_t = self.p_star * math.exp(-(self.h_max + self.u_c) / self.u0) if math.isfinite(self.h_max) else 0.0
+        return self.p_star * math.exp(-self.u_c / self.u0) - p_t
 
     def breakpoints(self):
-        """The pressure where the cap h_max ends (if finite) and the closing pressure [Pa]."""
-        cap = (self.p_star * math.exp(-(self.h_max + self.u_c) / self.u0),) if math.isfinite(self.h_max) else ()
-        return cap + (self.closing_pressure(),)
+        """The closing pressure [Pa]."""
+        return (self.closing_pressure(),)
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,10 @@
 """Leak paths through a seal film: which elements conduct, and whether any conducting path joins the edges.
 
-An element conducts with the harmonic mean of its nodes' h³ (the series rule of a 1-D slot, second-order accurate
-for a smooth gap, and exactly 0 when one node's channel is closed). The leak path exists if a connected set of
+An element conducts with k_e = G²·H, G and H the geometric and harmonic means of its nodes' gaps: for two nodes
+this is 2 h_a² h_b²/(h_a + h_b), the exact conductance ∫ ds / ∫ ds/h³ of a slot whose gap varies linearly between
+them; it is h³ for a uniform gap, second-order accurate for a smooth one (10× smaller error than the harmonic
+mean of h³ on a ring whose gap varies 4.5× across, tests/exchange/test_seal_film.py), and exactly 0 when one
+node's channel is closed, tending to 0 continuously (as h^(1+2/N)) as it closes. The leak path exists if a connected set of
 conducting elements joins a node of the pressurised edge to a node of the outer edge: the connected components
 of the graph "two nodes share a conducting element" (scipy.sparse.csgraph) decide it exactly, in integers, with no
 threshold. A ring of closed nodes all around the seal therefore leaks exactly nothing.
@@ -14,18 +17,23 @@ from scipy.sparse.csgraph import connected_components
 
 from exchange.seal.surface import element_pairs
 
-__all__ = ["element_coefficients", "leak_path_nodes", "is_sealed"]
+__all__ = ["series_coefficient", "element_coefficients", "leak_path_nodes", "is_sealed"]
 
 
-def _harmonic_cubes(h):
-    cubes = h ** 3
-    open_ = np.all(cubes > 0.0, axis=1)
-    safe = np.where(cubes > 0.0, cubes, 1.0)
-    return np.where(open_, h.shape[1] / np.sum(1.0 / safe, axis=1), 0.0)
+def series_coefficient(h):
+    """(m,) element coefficients k_e = G²·H [m³] of element gaps ``h`` (m, N) [m] (module notes).
+
+    >>> series_coefficient(np.array([[1.0, 1.5], [2.0, 2.0], [1.0, 0.0]])).round(12).tolist()
+    [1.8, 8.0, 0.0]
+    """
+    open_ = np.all(h > 0.0, axis=1)
+    safe = np.where(h > 0.0, h, 1.0)
+    n = h.shape[1]
+    return np.where(open_, np.exp(2.0 * np.mean(np.log(safe), axis=1)) * n / np.sum(1.0 / safe, axis=1), 0.0)
 
 
 def element_coefficients(film, gaps):
-    """(k_tri (mt,), k_quad (mq,)) [m³]: the harmonic mean of the nodal h³ of every element, 0 if a node is closed.
+    """(k_tri (mt,), k_quad (mq,)) [m³]: :func:`series_coefficient` of every element, 0 if a node is closed.
 
     >>> from exchange.seal.film import seal_film
     >>> from exchange.seal.meshes import annulus_mesh
@@ -37,7 +45,7 @@ def element_coefficients(film, gaps):
     h = np.asarray(gaps, dtype=float)
     if h.shape != (film.n_nodes,) or np.any(h < 0.0) or not np.isfinite(h).all():
         raise ValueError(f"gaps must be {film.n_nodes} finite numbers >= 0 [m], one per node")
-    return _harmonic_cubes(h[film.triangles]), _harmonic_cubes(h[film.quads])
+    return series_coefficient(h[film.triangles]), series_coefficient(h[film.quads])
 
 
 def leak_path_nodes(film, k_tri, k_quad):
