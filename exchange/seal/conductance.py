@@ -149,7 +149,7 @@ def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol
     """Build the :class:`ConductanceCurve` of ``film`` along ``path`` for loads in [``lower``, ``upper``].
 
     A piece is accepted when its midpoint error is within rtol·|K| + atol + qtol·|dK/dq|: ``rtol`` [-], ``atol``
-    [m³] (default rtol·1e-3·max K) and ``qtol`` [unit of q] (default rtol·0.1·(upper − lower)), a tolerance on
+    [m³] (default rtol·1e-3·max K) and ``qtol`` [unit of q] (default rtol·(upper − lower)), a tolerance on
     the load itself: a feature narrower than qtol (a node's first touch under a steep gap law) is smeared over
     qtol instead of being resolved. ``max_solves`` stops a runaway build with an error.
     """
@@ -174,7 +174,7 @@ def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol
     grid = list(np.linspace(lo, hi, 9))
     k_max = max(abs(sample(q)[0]) for q in grid)
     atol = rtol * 1e-3 * k_max if atol is None else atol
-    qtol = rtol * 0.1 * (upper - lower) if qtol is None else qtol
+    qtol = rtol * (upper - lower) if qtol is None else qtol
     todo, knots, worst = list(zip(grid[:-1], grid[1:])), set(grid), 0.0
     while todo:
         a, b = todo.pop()

@@ -49,7 +49,7 @@ def closing_clearance(law, gap_law):
         upper = c0
         while softened_pressure(upper, c0, p0) < p_c:
             upper *= 2.0
-        return -brentq(lambda h: softened_pressure(h, c0, p0) - p_c, 0.0, upper, xtol=1e-300, rtol=4e-16)
+        return -brentq(lambda h: softened_pressure(h, c0, p0) - p_c, 0.0, upper, xtol=1e-300, rtol=1e-15)
     raise ValueError(f"unknown contact law code {kind}")
 
 
@@ -71,10 +71,13 @@ class DisplacementPath:
         self.sigma = float(sides[0])
         self.direction = -self.sigma
         self.p_max = None if loaded_to is None else seat_state(loaded_to, self.nodes, self.law)[1]
+        self._closing = self.closing()
 
     def heights(self, s):
-        """(n,) channel heights [m] at displacement ``s`` [m]."""
-        return seat_channel_heights(s, self.nodes, self.law, self.gap_law, 0.0, self.p_max)
+        """(n,) channel heights [m] at displacement ``s`` [m]; exactly 0 on the nodes closed at ``s`` by
+        :meth:`closing` (the clearance computed as g0 + σ·s may miss the closing clearance by a rounding)."""
+        h = seat_channel_heights(s, self.nodes, self.law, self.gap_law, 0.0, self.p_max)
+        return np.where(self.direction * (s - self._closing) >= 0.0, 0.0, h)
 
     def in_contact(self, s):
         """(n,) bool: nodes in contact at ``s``."""
@@ -105,10 +108,12 @@ class ReactionPath:
         self.contact_area = float(self.nodes[self.contact, 2].sum())
         if self.contact_area <= 0.0:
             raise ValueError(f"no seal node touches the flange at s = {self.s_seat!r} m")
+        self._closing = self.closing()
 
     def heights(self, force):
-        """(n,) channel heights [m] at reaction ``force`` [N] >= 0."""
-        return seat_channel_heights(self.s_seat, self.nodes, self.law, self.gap_law, max(float(force), 0.0))
+        """(n,) channel heights [m] at reaction ``force`` [N] >= 0 (exactly 0 on the nodes closed there)."""
+        h = seat_channel_heights(self.s_seat, self.nodes, self.law, self.gap_law, max(float(force), 0.0))
+        return np.where(force >= self._closing, 0.0, h)
 
     def in_contact(self, force):
         return self.contact.copy()

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["annulus_mesh", "annulus_delaunay"]
+__all__ = ["annulus_mesh", "annulus_delaunay", "flat_flange_seat"]
 
 
 def annulus_mesh(r_inner, r_outer, n_radial, n_angular, triangles=False, radii=None):
@@ -59,3 +59,14 @@ def annulus_delaunay(r_inner, r_outer, n_boundary, n_interior, seed=0):
     tri = tri[~np.all(tri < n_boundary, axis=1)]  # the hole: no point lies in it, so its triangles join 3 inner nodes
     vertices = np.c_[xy, np.zeros(len(xy))]
     return vertices, tri, np.arange(n_boundary), np.arange(n_boundary, 2 * n_boundary)
+
+
+def flat_flange_seat(vertices, areas, clearance, slope=0.0):
+    """Seat table (n, 4) of :mod:`exchange.contact_laws` for a rigid flat flange above a z = 0 seal face, moving
+    down (−z) by s: g_i = clearance + slope·y_i − s (σ = −1), tributary ``areas`` (n,) [m²], every node reachable.
+
+    >>> flat_flange_seat(np.array([[0.0, 0.01, 0.0]]), np.array([1e-6]), 2e-6, slope=1e-4).tolist()
+    [[3e-06, -1.0, 1e-06, 1.0]]
+    """
+    v = np.asarray(vertices, float)
+    return np.c_[clearance + slope * v[:, 1], -np.ones(len(v)), np.asarray(areas, float), np.ones(len(v))]
