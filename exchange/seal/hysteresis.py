@@ -28,7 +28,7 @@ import numpy as np
 
 from exchange.seal.gap_laws import _positive, _shaped, as_pressure
 
-__all__ = ["loading_tightness", "unloading_tightness", "tightness_gap", "pvrc_reference_gap", "PVRCGap",
+__all__ = ["loading_tightness", "unloading_tightness", "tightness_gap", "pvrc_reference_gap", "pvrc_leak_rate", "PVRCGap",
            "P_STAR", "REFERENCE_LEAK_PER_DIAMETER"]
 
 #: Reference gauge pressure of the tightness parameter, 1 atm [Pa].
@@ -85,6 +85,17 @@ def tightness_gap(Tp, h1, h_max=math.inf):
     with np.errstate(divide="ignore"):
         h = np.minimum(h1 * t ** (-2.0 / 3.0), h_max)
     return _shaped(h, Tp)
+
+
+def pvrc_leak_rate(Tp, pressure, outer_diameter):
+    r"""Helium mass leak rate [kg/s] of a gasket of tightness ``Tp`` at gauge ``pressure`` [Pa] (PVRC definition).
+
+    .. math:: L = L^*_{RM}\, D_o \left(\frac{P}{P^*}\right)^2 T_p^{-2}
+
+    >>> float(pvrc_leak_rate(1.0, 101325.0, 0.150))  # the reference: 1 mg/s
+    1e-06
+    """
+    return REFERENCE_LEAK_PER_DIAMETER * outer_diameter * (pressure / P_STAR) ** 2 / np.asarray(Tp, float) ** 2
 
 
 def pvrc_reference_gap(outer_diameter, inner_diameter, viscosity, gas_constant, temperature):
