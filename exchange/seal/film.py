@@ -40,6 +40,10 @@ class SealFilm:
         Unit-coefficient element stiffness in the chart [-].
     areas : (n,) float
         Tributary area of every node [m²] (every element of the surface, dropped or not).
+    pattern : (indptr, indices)
+        Sparsity pattern (CSR) of the assembled film operator, computed once.
+    slots_tri, slots_quad : (mt, 9), (mq, 16) int
+        Position in the CSR data of every entry of every element matrix: assembling is one bincount.
     """
 
     vertices: np.ndarray
@@ -53,10 +57,24 @@ class SealFilm:
     stiffness_tri: np.ndarray
     stiffness_quad: np.ndarray
     areas: np.ndarray
+    pattern: tuple
+    slots_tri: np.ndarray
+    slots_quad: np.ndarray
 
     @property
     def n_nodes(self):
         return len(self.vertices)
+
+
+def _pattern(n, triangles, quads):
+    """CSR pattern of the operator and each element entry's slot in its data array."""
+    rows = np.concatenate([np.repeat(triangles, 3, axis=1).ravel(), np.repeat(quads, 4, axis=1).ravel()])
+    cols = np.concatenate([np.tile(triangles, (1, 3)).ravel(), np.tile(quads, (1, 4)).ravel()])
+    key = rows * n + cols
+    unique, slots = np.unique(key, return_inverse=True)
+    indptr = np.searchsorted(unique // n, np.arange(n + 1)).astype(np.int64)
+    split = 9 * len(triangles)
+    return (indptr, (unique % n).astype(np.int64)), slots[:split].reshape(-1, 9), slots[split:].reshape(-1, 16)
 
 
 def _keep(elements, high, low):
@@ -149,5 +167,6 @@ def seal_film(vertices, faces, high="inner", low="outer", chart="auto", axis=Non
                 charts.signed_areas(quad_coords)[:, :1]) <= 0):
             raise ValueError("a quad is twisted or degenerate (its Jacobian changes sign)")
     k_tri, k_quad = charts.triangle_stiffness(tri_coords), charts.quad_stiffness(quad_coords)
+    pattern, slots_tri, slots_quad = _pattern(len(v), triangles, quads)
     return SealFilm(v, triangles, quads, hi, lo, name, np.asarray(c, float), np.asarray(a, float),
-                    k_tri, k_quad, areas)
+                    k_tri, k_quad, areas, pattern, slots_tri, slots_quad)

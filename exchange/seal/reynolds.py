@@ -29,7 +29,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import coo_matrix
+from scipy.sparse import csr_matrix
 from scipy.sparse.linalg import splu
 
 from exchange.seal.percolation import element_coefficients, leak_path_nodes
@@ -75,16 +75,14 @@ class FilmSolution:
 
 
 def _assemble(film, k_tri, k_quad, used_tri, used_quad):
-    rows, cols, data = [], [], []
-    for elements, k, stiffness, used in ((film.triangles, k_tri, film.stiffness_tri, used_tri),
-                                         (film.quads, k_quad, film.stiffness_quad, used_quad)):
-        e = elements[used]
-        size = e.shape[1]
-        rows.append(np.repeat(e, size, axis=1).ravel())
-        cols.append(np.tile(e, (1, size)).ravel())
-        data.append((k[used, None, None] * stiffness[used]).ravel())
+    """The film operator Σ_e k_e K_e over the used elements, on the film's fixed CSR pattern."""
+    indptr, indices = film.pattern
+    weights = np.concatenate([(np.where(used_tri, k_tri, 0.0)[:, None, None] * film.stiffness_tri).ravel(),
+                              (np.where(used_quad, k_quad, 0.0)[:, None, None] * film.stiffness_quad).ravel()])
+    slots = np.concatenate([film.slots_tri.ravel(), film.slots_quad.ravel()])
+    data = np.bincount(slots, weights=weights, minlength=len(indices))
     n = film.n_nodes
-    return coo_matrix((np.concatenate(data), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
+    return csr_matrix((data, indices, indptr), shape=(n, n))
 
 
 def _solve(matrix, rhs):
