@@ -24,10 +24,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from exchange.seal.kernels import curve_conductance, hermite
 from exchange.seal.percolation import element_coefficients, leak_path_nodes
 from exchange.seal.reynolds import element_energies, film_conductance
 
-__all__ = ["ConductanceCurve", "conductance_curve", "closure_load", "hermite", "CURVE_RTOL", "MAX_SOLVES"]
+__all__ = ["ConductanceCurve", "conductance_curve", "closure_load", "CURVE_RTOL", "MAX_SOLVES"]
 
 #: Default relative tolerance of the tabulated conductance [-].
 CURVE_RTOL = 1e-4
@@ -63,14 +64,6 @@ def closure_load(film, closing, direction):
         mid = (lo + hi) // 2
         lo, hi = (lo, mid) if sealed(mid) else (mid, hi)
     return float(closing[order[hi - 1]])
-
-
-def hermite(q, qa, qb, ka, kb, sa, sb):
-    """Cubic Hermite interpolant on [qa, qb] with end values ka, kb and slopes sa, sb, at q (vectorised)."""
-    w = qb - qa
-    t = (q - qa) / w
-    t2, t3 = t * t, t * t * t
-    return (2 * t3 - 3 * t2 + 1) * ka + (t3 - 2 * t2 + t) * w * sa + (-2 * t3 + 3 * t2) * kb + (t3 - t2) * w * sb
 
 
 def _limited(ka, kb, sa, sb, w):
@@ -115,20 +108,21 @@ class ConductanceCurve:
     error_estimate: float
 
     def __call__(self, q):
-        """K [m³] at load(s) ``q``."""
-        q_arr = np.clip(np.asarray(q, dtype=float), self.knots[0], self.knots[-1])
-        i = np.clip(np.searchsorted(self.knots, q_arr, side="right") - 1, 0, len(self.knots) - 2)
-        k = hermite(q_arr, self.knots[i], self.knots[i + 1], self.values[i], self.values[i + 1], self.slopes[i],
-                    self.slopes[i + 1])
-        sealed = self.direction * (np.asarray(q, dtype=float) - self.closure) >= 0.0
-        k = np.where(sealed, 0.0, np.maximum(k, 0.0))
-        return float(k) if np.ndim(q) == 0 else k
+        """K [m³] at load(s) ``q`` (the engine's kernel :func:`exchange.seal.kernels.curve_conductance`)."""
+        values = [curve_conductance(float(x), self.knots, self.values, self.slopes, self.closure, self.direction)
+                  for x in np.ravel(q)]
+        return float(values[0]) if np.ndim(q) == 0 else np.array(values).reshape(np.shape(q))
+
+    def arrays(self):
+        """The arrays the engine's kernel takes: knots, values, slopes [and closure, direction as floats]."""
+        return {"knots": self.knots, "values": self.values, "slopes": self.slopes,
+                "closure": float(self.closure), "direction": float(self.direction)}
 
 
-def _sample(film, path, q, step):
+def _sample(film, path, q, step, power):
     """(K, dK/dq) at load q."""
     h = path.heights(q)
-    k_cond, solution = film_conductance(film, h)
+    k_cond, solution = film_conductance(film, h, power)
     if solution.sealed:
         return 0.0, 0.0
     dh = (path.heights(q + step) - path.heights(q - step)) / (2.0 * step)
@@ -140,12 +134,13 @@ def _sample(film, path, q, step):
         he, n = h[elements], elements.shape[1]
         with np.errstate(divide="ignore", invalid="ignore"):
             harmonic = n / np.sum(1.0 / he, axis=1)
-            dk = k[:, None] * (2.0 / (n * he) + harmonic[:, None] / (n * he * he))  # d(G²H)/dh_i
+            dk = k[:, None] * (2.0 / (n * he) + (power - 2) * harmonic[:, None] / (n * he * he))  # d(G²H)/dh_i
         slope += float(np.sum(energy * np.sum(np.where(k[:, None] > 0.0, dk, 0.0) * dh[elements], axis=1)))
     return k_cond, slope
 
 
-def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol=None, max_solves=MAX_SOLVES):
+def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol=None, max_solves=MAX_SOLVES,
+                      power=3):
     """Build the :class:`ConductanceCurve` of ``film`` along ``path`` for loads in [``lower``, ``upper``].
 
     A piece is accepted when its midpoint error is within rtol·|K| + atol + qtol·|dK/dq|: ``rtol`` [-], ``atol``
@@ -167,7 +162,7 @@ def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol
         nonlocal solves
         if q not in samples:
             at_closure = q == q_star
-            samples[q] = (0.0, 0.0) if at_closure else _sample(film, path, q, min(step, abs(q - q_star) / 2))
+            samples[q] = (0.0, 0.0) if at_closure else _sample(film, path, q, min(step, abs(q - q_star) / 2), power)
             solves += 0 if at_closure else 1
         return samples[q]
 

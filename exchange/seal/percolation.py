@@ -20,19 +20,27 @@ from exchange.seal.surface import element_pairs
 __all__ = ["series_coefficient", "element_coefficients", "leak_path_nodes", "is_sealed"]
 
 
-def series_coefficient(h):
-    """(m,) element coefficients k_e = G²·H [m³] of element gaps ``h`` (m, N) [m] (module notes).
+def series_coefficient(h, power=3):
+    """(m,) element coefficients of element gaps ``h`` (m, N) [m]: k_e = G²·H [m³] for ``power`` 3 (module
+    notes), G² [m²] for ``power`` 2 (the slip term's h², exact for a linear 1-D slot: ∫ds/∫ds/h² = h_a·h_b).
 
     >>> series_coefficient(np.array([[1.0, 1.5], [2.0, 2.0], [1.0, 0.0]])).round(12).tolist()
     [1.8, 8.0, 0.0]
+    >>> series_coefficient(np.array([[1.0, 1.5]]), power=2).round(12).tolist()
+    [1.5]
     """
+    if power not in (2, 3):
+        raise ValueError(f"power must be 2 or 3, got {power!r}")
     open_ = np.all(h > 0.0, axis=1)
     safe = np.where(h > 0.0, h, 1.0)
     n = h.shape[1]
-    return np.where(open_, np.exp(2.0 * np.mean(np.log(safe), axis=1)) * n / np.sum(1.0 / safe, axis=1), 0.0)
+    k = np.exp(2.0 * np.mean(np.log(safe), axis=1))
+    if power == 3:
+        k = k * n / np.sum(1.0 / safe, axis=1)
+    return np.where(open_, k, 0.0)
 
 
-def element_coefficients(film, gaps):
+def element_coefficients(film, gaps, power=3):
     """(k_tri (mt,), k_quad (mq,)) [m³]: :func:`series_coefficient` of every element, 0 if a node is closed.
 
     >>> from exchange.seal.film import seal_film
@@ -45,7 +53,7 @@ def element_coefficients(film, gaps):
     h = np.asarray(gaps, dtype=float)
     if h.shape != (film.n_nodes,) or np.any(h < 0.0) or not np.isfinite(h).all():
         raise ValueError(f"gaps must be {film.n_nodes} finite numbers >= 0 [m], one per node")
-    return series_coefficient(h[film.triangles]), series_coefficient(h[film.quads])
+    return series_coefficient(h[film.triangles], power), series_coefficient(h[film.quads], power)
 
 
 def leak_path_nodes(film, k_tri, k_quad):

@@ -138,9 +138,9 @@ def element_energies(film, solution):
     return tuple(out)
 
 
-def film_conductance(film, gaps):
+def film_conductance(film, gaps, power=3):
     """The film's conductance K [m³] for nodal gaps ``gaps`` (n,) [m], and its :class:`FilmSolution` (u from 1 on
-    the pressurised edge to 0 on the outer edge).
+    the pressurised edge to 0 on the outer edge); ``power`` 2 gives the slip conductance K_2 [m²] (k = h²).
 
     >>> from exchange.seal.film import seal_film
     >>> from exchange.seal.meshes import annulus_mesh
@@ -149,7 +149,7 @@ def film_conductance(film, gaps):
     >>> float(round(K / (2 * np.pi * 1e-15 / np.log(2.0)), 12))  # 2π h³ / ln(ro/ri)
     1.0
     """
-    solution = solve_film(film, *element_coefficients(film, gaps), 1.0, 0.0)
+    solution = solve_film(film, *element_coefficients(film, gaps, power), 1.0, 0.0)
     return solution.flux, solution
 
 

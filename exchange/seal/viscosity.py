@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import math
 
+from numba import njit
+
 __all__ = ["coolprop_viscosity", "sutherland_viscosity", "mean_free_path", "SUTHERLAND"]
 
 #: Sutherland constants (μ_ref [Pa s], T_ref [K], S [K]) from White, Viscous Fluid Flow, Table 1-2.
@@ -30,6 +32,7 @@ def coolprop_viscosity(temperature, fluid, pressure=101325.0):
     return float(PropsSI("V", "T", float(temperature), "P", float(pressure), fluid))
 
 
+@njit(cache=True)
 def sutherland_viscosity(temperature, mu_ref, T_ref, S):
     r"""Sutherland's law [Pa s].
 

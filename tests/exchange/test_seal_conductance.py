@@ -152,3 +152,22 @@ def test_closure_of_a_slowly_loaded_flange_is_an_event(film):
     assert abs(run.t_events[0][0] - t_star) <= 1e-10 * t_end
     assert run.y_events[0][0][0] < m0  # it leaked until then, and nothing after: K = 0 beyond s*
     assert curve(s0 + a * t_end ** 2) == 0.0
+
+
+def test_engine_kernels_give_the_film_mass_flow_with_slip(film):
+    """K and the slip conductance K_2 tabulated, then the engine's kernel: exact for a uniform gap."""
+    from exchange.seal.kernels import seal_mass_flow
+    from exchange.seal.reynolds import film_mass_flow
+    from exchange.seal.viscosity import mean_free_path
+    g0, k, gap = 0.2e-6, 1e13, ExponentialGap(h0=0.5e-6, p0=5e6, u_c=0.05e-6)
+    path = DisplacementPath(flat_flange_seat(film.vertices, film.areas, g0), law(1, k), gap)
+    k3 = conductance_curve(film, path, 0.0, 2e-6, rtol=1e-7)
+    k2 = conductance_curve(film, path, 0.0, 2e-6, rtol=1e-7, power=2)
+    assert k2.closure == k3.closure
+    T, mu, R, p1, p2 = 293.15, 1.76e-5, 296.8, 3e5, 1e5
+    c = mean_free_path(1.0, T, mu, R)
+    for s in (0.0, 0.1e-6, 0.5e-6):
+        expected, _ = film_mass_flow(film, path.heights(s), p1, p2, T, mu, R, slip=True)
+        kernel = seal_mass_flow(k3(s), k2(s), p1, p2, T, mu, R, c)
+        assert kernel == pytest.approx(expected, rel=1e-5)
+        assert seal_mass_flow(k3(s), k2(s), p2, p1, T, mu, R, c) == pytest.approx(-kernel, rel=1e-12)
