@@ -5,7 +5,7 @@ r"""Gas viscosity μ(T) and mean free path for the seal film.
   nitrogen, oxygen, argon and air).
 * :func:`sutherland_viscosity`: Sutherland's law (Phil. Mag. 36 (1893) 507), cheap and compilable, with the
   constants of White, *Viscous Fluid Flow*, 3rd ed., Table 1-2 (:data:`SUTHERLAND`); within 1 % of CoolProp for
-  air and nitrogen from 250 to 500 K (tests/exchange/test_seal_film.py).
+  air and nitrogen from 250 to 400 K (1.3 % for air at 500 K; tests/exchange/test_seal_film.py).
 * :func:`mean_free_path`: λ = (μ/p)·√(πRT/2) (hard-sphere kinetic theory; e.g. Karniadakis, Beskok & Aluru,
   *Microflows and Nanoflows* (2005), sec. 1.2): 65 nm for air at 1 atm and 20 °C.
 """

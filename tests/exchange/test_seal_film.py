@@ -166,3 +166,16 @@ def test_edges_from_loops_and_node_sets():
         seal_film(v, f, chart="cartesian")
     with pytest.raises(ValueError, match="gaps must be"):
         film_conductance(outward, np.full(len(v), -1.0))
+
+
+@pytest.mark.parametrize("fluid", ["Air", "Nitrogen"])
+def test_sutherland_viscosity_is_within_one_percent_of_coolprop(fluid):
+    from exchange.seal.viscosity import SUTHERLAND, coolprop_viscosity, sutherland_viscosity
+    for T in np.linspace(250.0, 400.0, 7):  # air: 1.3 % at 500 K
+        assert sutherland_viscosity(T, *SUTHERLAND[fluid]) == pytest.approx(coolprop_viscosity(T, fluid), rel=0.01)
+
+
+def test_mean_free_path_of_air():
+    from exchange.seal.viscosity import coolprop_viscosity
+    lam = mean_free_path(101325.0, 293.15, coolprop_viscosity(293.15, "Air"), 287.05)
+    assert 60e-9 < lam < 70e-9  # 65 nm; tabulated ≈ 68 nm (hard-sphere estimates differ by a few %)
