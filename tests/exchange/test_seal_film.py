@@ -179,3 +179,19 @@ def test_mean_free_path_of_air():
     from exchange.seal.viscosity import coolprop_viscosity
     lam = mean_free_path(101325.0, 293.15, coolprop_viscosity(293.15, "Air"), 287.05)
     assert 60e-9 < lam < 70e-9  # 65 nm; tabulated ≈ 68 nm (hard-sphere estimates differ by a few %)
+
+
+@pytest.mark.parametrize("triangles", [False, True])
+def test_conical_seal_face_converges_to_the_unrolled_annulus(triangles):
+    """A cone z = r·tan α unrolls into a plane annular sector of angle 2π·cos α between slant radii r/cos α:
+    K = 2π cos α h³ / ln(r_o/r_i). The local chart converges to it at second order."""
+    alpha, h = math.radians(30.0), 3e-6
+    exact = 2.0 * math.pi * math.cos(alpha) * h ** 3 / math.log(RO / RI)
+    errors = []
+    for n in (4, 8, 16):
+        v, f = annulus_mesh(RI, RO, n, 12 * n, triangles=triangles)
+        v[:, 2] = np.hypot(v[:, 0], v[:, 1]) * math.tan(alpha)
+        film = seal_film(v, f)
+        assert film.chart == "local"
+        errors.append(abs(film_conductance(film, np.full(film.n_nodes, h))[0] / exact - 1.0))
+    assert errors[-1] < 1e-3 and np.all(np.log2(np.array(errors[:-1]) / np.array(errors[1:])) > 1.8), errors
