@@ -166,7 +166,7 @@ def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol
             solves += 0 if at_closure else 1
         return samples[q]
 
-    grid = list(np.linspace(lo, hi, 9))
+    grid = list(np.linspace(lo, hi, 5))
     k_max = max(abs(sample(q)[0]) for q in grid)
     atol = rtol * 1e-3 * k_max if atol is None else atol
     qtol = rtol * (upper - lower) if qtol is None else qtol
