@@ -111,6 +111,24 @@ def _polar(vertices, triangles, quads, high, low, axis, centre):
     return coords, centre, a
 
 
+def _local(vertices, triangles, quads, axis):
+    """(chart coordinates per element type, centroid, axis) of the local chart; an error on a degenerate element."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tri_coords, quad_coords = charts.element_local(vertices, triangles), charts.element_local(vertices, quads)
+    areas = np.abs(charts.signed_areas(tri_coords))
+    flat = ~(areas > 1e-14 * np.nanmax(areas, initial=0.0))
+    if len(areas) and flat.any():
+        raise ValueError(f"triangle {int(np.argmax(flat))} of the seal surface has no area")
+    if len(quads):
+        jacobians = charts.signed_areas(quad_coords)
+        bad = ~np.all(jacobians * np.sign(jacobians[:, :1]) > 0.0, axis=1)
+        if bad.any():
+            raise ValueError(f"quad {int(np.argmax(bad))} of the seal surface is twisted or degenerate "
+                             "(its Jacobian changes sign or vanishes)")
+    origin, a, _, _, _ = charts.plane_frame(vertices, axis)
+    return (tri_coords, quad_coords), origin, a
+
+
 def seal_film(vertices, faces, high="inner", low="outer", chart="auto", axis=None, centre=None):
     """Build the :class:`SealFilm` of a seal surface.
 
@@ -160,12 +178,8 @@ def seal_film(vertices, faces, high="inner", low="outer", chart="auto", axis=Non
         (tri_coords, quad_coords), c, a = polar
         name = "polar"
     else:
-        tri_coords, quad_coords = charts.element_local(v, triangles), charts.element_local(v, quads)
-        origin, a, _, _, _ = charts.plane_frame(v, axis)
-        c, name = origin, "local"
-        if len(quads) and np.any(np.sign(charts.signed_areas(quad_coords)) * np.sign(
-                charts.signed_areas(quad_coords)[:, :1]) <= 0):
-            raise ValueError("a quad is twisted or degenerate (its Jacobian changes sign)")
+        (tri_coords, quad_coords), c, a = _local(v, triangles, quads, axis)
+        name = "local"
     k_tri, k_quad = charts.triangle_stiffness(tri_coords), charts.quad_stiffness(quad_coords)
     pattern, slots_tri, slots_quad = _pattern(len(v), triangles, quads)
     return SealFilm(v, triangles, quads, hi, lo, name, np.asarray(c, float), np.asarray(a, float),

@@ -195,3 +195,10 @@ def test_conical_seal_face_converges_to_the_unrolled_annulus(triangles):
         assert film.chart == "local"
         errors.append(abs(film_conductance(film, np.full(film.n_nodes, h))[0] / exact - 1.0))
     assert errors[-1] < 1e-3 and np.all(np.log2(np.array(errors[:-1]) / np.array(errors[1:])) > 1.8), errors
+
+
+def test_degenerate_elements_are_named():
+    v, f = annulus_mesh(RI, RO, 2, 16, triangles=True)
+    v[20] = v[4]  # collapse: node 20 onto node 4 (same angle, inner row) makes its triangles flat
+    with pytest.raises(ValueError, match="has no area|twisted"):
+        seal_film(v, f, chart="local")
