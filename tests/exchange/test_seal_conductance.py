@@ -171,3 +171,18 @@ def test_engine_kernels_give_the_film_mass_flow_with_slip(film):
         kernel = seal_mass_flow(k3(s), k2(s), p1, p2, T, mu, R, c)
         assert kernel == pytest.approx(expected, rel=1e-5)
         assert seal_mass_flow(k3(s), k2(s), p2, p1, T, mu, R, c) == pytest.approx(-kernel, rel=1e-12)
+
+
+def test_leak_onset_of_a_preloaded_flange_is_where_the_reaction_path_opens(film):
+    """The held flange's reaction F = F_b − (p − p_a)·A_p: the seal opens exactly at p_onset."""
+    from exchange.seal.flange import leak_onset_pressure
+    gap = ExponentialGap(h0=4e-6, p0=5e6, u_c=0.5e-6)
+    path = ReactionPath(flat_flange_seat(film.vertices, film.areas, 0.0), law(0), gap, s_seat=0.0)
+    curve = conductance_curve(film, path, 0.0, 2e5, rtol=1e-5)
+    preload, a_p, p_a = 1.5e5, math.pi * RI ** 2, 101325.0
+    onset = leak_onset_pressure(preload, path.contact_area, a_p, gap.closing_pressure(), p_a)
+
+    def reaction(p):
+        return preload - (p - p_a) * a_p
+    assert reaction(onset) == pytest.approx(curve.closure, rel=1e-12)
+    assert curve(reaction(onset * (1 - 1e-9))) == 0.0 and curve(reaction(onset * (1 + 1e-9))) > 0.0
