@@ -14,14 +14,14 @@ clearance plus the roughness channel that the gap law leaves at that pressure:
 * hard contact: a node held on the seat has g = 0 and carries its share of the reaction, h = h_gap(p).
 
 h is continuous through every change of state, and exactly 0 only where the clearance is closed and the gap law
-is closed at that pressure. The contact laws are those of :mod:`exchange.contact_laws` (evaluated by its
+is closed at that pressure. The contact laws are those of :mod:`exchange.contact.laws` (evaluated by its
 ``seat_nodal`` kernel, without damping: the leak gap follows the elastic contact, not the viscous pressure).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from exchange.contact_laws import HARD, seat_nodal
+from exchange.contact.laws import HARD, SeatNode, seat_nodal
 from exchange.seal.gap_laws import NoGap
 
 __all__ = ["channel_height", "seat_state", "seat_channel_heights", "contact_fraction"]
@@ -42,7 +42,7 @@ def channel_height(clearance, pressure, gap_law, p_max=None):
 
 def seat_state(s, nodes, law, reaction=0.0):
     """(clearance (n,) [m], pressure (n,) [Pa], in contact (n,) bool) of a seat's nodes at body displacement
-    ``s`` [m], without damping; ``nodes`` (n, 4) and ``law`` the seat arrays of :mod:`exchange.contact_laws`,
+    ``s`` [m], without damping; ``nodes`` (n, 4) and ``law`` the seat arrays of :mod:`exchange.contact.laws`,
     ``reaction`` [N] the held hard contact's force (shared by the closed nodes). Held hard-contact nodes get g = 0.
 
     >>> nodes = np.array([[0.0, -1.0, 0.5, 1.0], [2e-6, -1.0, 0.5, 1.0]])
@@ -56,7 +56,7 @@ def seat_state(s, nodes, law, reaction=0.0):
     elastic[3] = 0.0  # NO_DAMPING
     pressure, status = seat_nodal(float(s), 0.0, float(reaction), nodes, elastic)
     closed = status == 1
-    clearance = nodes[:, 0] + nodes[:, 1] * s
+    clearance = nodes[:, SeatNode.GAP] + nodes[:, SeatNode.SIDE] * s
     if int(elastic[0]) == HARD:
         clearance = np.where(closed, 0.0, clearance)
     if not np.isfinite(clearance).all():

@@ -16,7 +16,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from exchange.contact_laws import HARD, LINEAR, SOFTENED, TOUCH, softened_pressure
+from exchange.contact.laws import HARD, LINEAR, SOFTENED, TOUCH, SeatLaw, SeatNode, softened_pressure
 from exchange.seal.channel import seat_channel_heights, seat_state
 from exchange.seal.gap_laws import NoGap
 
@@ -25,7 +25,7 @@ __all__ = ["DisplacementPath", "ReactionPath", "closing_clearance"]
 
 def closing_clearance(law, gap_law):
     """The clearance g_c [m] at and below which a node's channel is closed under contact law ``law`` (the seat
-    parameter vector of :mod:`exchange.contact_laws`) and ``gap_law`` (−inf: never).
+    parameter vector of :mod:`exchange.contact.laws`) and ``gap_law`` (−inf: never).
 
     Closed means g <= 0 and p >= p_c (the gap law's closing pressure).
 
@@ -37,13 +37,13 @@ def closing_clearance(law, gap_law):
     p_c = gap_law.closing_pressure()
     if not math.isfinite(p_c):
         return -math.inf
-    kind = int(law[0])
+    kind = int(law[SeatLaw.KIND])
     if kind == HARD:
-        return TOUCH * law[10] if p_c == 0.0 else -math.inf
+        return TOUCH * law[SeatLaw.SEAT_SIZE] if p_c == 0.0 else -math.inf
     if kind == LINEAR:
-        return -p_c / law[1]
+        return -p_c / law[SeatLaw.STIFFNESS]
     if kind == SOFTENED:
-        c0, p0 = law[1], law[2]
+        c0, p0 = law[SeatLaw.STIFFNESS], law[SeatLaw.P0]
         if p_c <= p0:
             return 0.0
         upper = c0
@@ -56,7 +56,7 @@ def closing_clearance(law, gap_law):
 class DisplacementPath:
     """Channel heights against the flange's displacement s [m].
 
-    ``nodes`` (n, 4) and ``law`` the seat arrays of :mod:`exchange.contact_laws` (one row per seal-film node),
+    ``nodes`` (n, 4) and ``law`` the seat arrays of :mod:`exchange.contact.laws` (one row per seal-film node),
     ``gap_law`` the roughness channel, ``loaded_to`` [m]: for a hysteretic gap law, the deepest displacement
     reached so far (every node then unloads from the pressure it carried there).
     """
@@ -65,7 +65,7 @@ class DisplacementPath:
         self.nodes = np.ascontiguousarray(nodes, dtype=float)
         self.law = np.asarray(law, dtype=float)
         self.gap_law = gap_law
-        sides = np.unique(self.nodes[self.nodes[:, 3] != 0.0, 1])
+        sides = np.unique(self.nodes[self.nodes[:, SeatNode.REACH] != 0.0, SeatNode.SIDE])
         if len(sides) != 1:
             raise ValueError("a seal's flange must lie on one side of every seal node (one sigma for all nodes)")
         self.sigma = float(sides[0])
@@ -88,8 +88,8 @@ class DisplacementPath:
         g_c = -math.inf if self.p_max is not None else closing_clearance(self.law, self.gap_law)
         out = np.full(len(self.nodes), self.direction * np.inf)
         if math.isfinite(g_c):
-            reach = self.nodes[:, 3] != 0.0
-            out[reach] = (g_c - self.nodes[reach, 0]) / self.nodes[reach, 1]
+            reach = self.nodes[:, SeatNode.REACH] != 0.0
+            out[reach] = (g_c - self.nodes[reach, SeatNode.GAP]) / self.nodes[reach, SeatNode.SIDE]
         return out
 
 
@@ -99,13 +99,13 @@ class ReactionPath:
     def __init__(self, nodes, law, gap_law=NoGap(), s_seat=0.0):
         self.nodes = np.ascontiguousarray(nodes, dtype=float)
         self.law = np.asarray(law, dtype=float)
-        if int(self.law[0]) != HARD:
+        if int(self.law[SeatLaw.KIND]) != HARD:
             raise ValueError("a reaction path needs hard contact (law code 0)")
         self.gap_law = gap_law
         self.s_seat = float(s_seat)
         self.direction = 1.0
         self.contact = seat_state(self.s_seat, self.nodes, self.law)[2]
-        self.contact_area = float(self.nodes[self.contact, 2].sum())
+        self.contact_area = float(self.nodes[self.contact, SeatNode.AREA].sum())
         if self.contact_area <= 0.0:
             raise ValueError(f"no seal node touches the flange at s = {self.s_seat!r} m")
         self._closing = self.closing()

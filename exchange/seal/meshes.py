@@ -62,7 +62,7 @@ def annulus_delaunay(r_inner, r_outer, n_boundary, n_interior, seed=0):
 
 
 def flat_flange_seat(vertices, areas, clearance, slope=0.0):
-    """Seat table (n, 4) of :mod:`exchange.contact_laws` for a rigid flat flange above a z = 0 seal face, moving
+    """Seat table (n, 4) of :mod:`exchange.contact.laws` for a rigid flat flange above a z = 0 seal face, moving
     down (−z) by s: g_i = clearance + slope·y_i − s (σ = −1), tributary ``areas`` (n,) [m²], every node reachable.
 
     >>> flat_flange_seat(np.array([[0.0, 0.01, 0.0]]), np.array([1e-6]), 2e-6, slope=1e-4).tolist()

@@ -1,7 +1,7 @@
 """Seat contact on the engine, its compiled DOP853 against scipy's DOP853 stepping the same kernels: the relief
 valves, seat variants.
 
-The two integrators run the same algorithm on the same contact kernels (exchange/contact_laws.py,
+The two integrators run the same algorithm on the same contact kernels (exchange/contact/laws.py,
 exchange/compiled_body.py); they differ only by round-off (sums in another order), which moves step sizes where
 the error estimate is itself round-off (a constant-rate fill). So the events must be the same, in the same order,
 and the histories must agree to the solver's tolerance, converging together as rtol shrinks.

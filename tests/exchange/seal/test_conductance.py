@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from exchange.contact_laws import softened_pressure
+from exchange.contact.laws import softened_pressure
 from exchange.seal.conductance import closure_load, conductance_curve
 from exchange.seal.film import seal_film
 from exchange.seal.gap_laws import ExponentialGap, NoGap, PerssonGap, TableGap

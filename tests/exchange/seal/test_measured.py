@@ -8,7 +8,7 @@ import pytest
 
 from exchange.seal.hysteresis import PVRCGap, loading_tightness, pvrc_reference_gap, tightness_gap
 
-SCRIPT = Path(__file__).resolve().parents[2] / "benchmarks" / "seal_leak_curve.py"
+SCRIPT = Path(__file__).resolve().parents[3] / "benchmarks" / "seal_leak_curve.py"
 
 
 @pytest.fixture(scope="module")
