@@ -39,7 +39,7 @@ import numpy as np
 
 from blockage.areas import active_counts, blocked_face_areas, leak_area, obstruction_area
 
-__all__ = ["RULES", "SIDES", "default_side", "default_lag", "triangulated", "touched_faces", "flagged_nodes",
+__all__ = ["RULES", "SIDES", "default_side", "default_lag", "triangulated", "LeakTree", "touched_faces", "flagged_nodes",
            "exact_fractions", "abaqus_fractions", "radioss_fractions", "lsdyna_cpm_fractions",
            "lsdyna_cpg_fractions", "face_fractions", "face_counts", "blocked_fabric_leak_area", "blocks_exchange",
            "RuleBlockage", "rule_blockage"]
@@ -85,12 +85,9 @@ def triangulated(faces, face_sizes) -> tuple:
     return tri, np.concatenate([np.arange(len(faces)), quads])
 
 
-def touched_faces(vertices, faces, face_sizes, points, tolerance: float, open_depth: float = 0.0) -> np.ndarray:
-    """(m,) bool: the leakage faces that are the main segment of a blocker node in contact.
-
-    A blocker node (a secondary node of the contact) is in contact when its distance to the leakage surface is
-    ``<= tolerance``, or when it lies behind the surface (against the faces' pseudonormal) within ``open_depth``
-    [m]; its main segment is the face nearest to it (the face the contact pairs it with).
+class LeakTree:
+    """The leakage surface as a blocker of the blocker nodes (its triangles in a tree, each with its face), to find
+    the main segments they touch; :meth:`refit` follows a moving surface.
 
     Parameters
     ----------
@@ -99,30 +96,47 @@ def touched_faces(vertices, faces, face_sizes, points, tolerance: float, open_de
     faces : (m, 4) int
         Padded with -1 for triangles.
     face_sizes : (m,) int
-    points : (k, 3) float
-        Blocker nodes [m], same frame.
-    tolerance : float
-        Contact tolerance [m].
+    """
+
+    def __init__(self, vertices, faces, face_sizes):
+        from blockage.blocker import Blocker
+
+        tri, self.owner = triangulated(faces, face_sizes)
+        self.blocker, self.m = Blocker(np.asarray(vertices, dtype=float), tri), len(faces)
+
+    def refit(self, vertices) -> None:
+        self.blocker.refit(np.asarray(vertices, dtype=float))
+
+    def touched(self, points, tolerance: float, open_depth: float = 0.0) -> np.ndarray:
+        """(m,) bool: the faces that are the main segment of a blocker node in contact.
+
+        A blocker node (a secondary node of the contact) is in contact when its distance to the leakage surface is
+        ``<= tolerance``, or when it lies behind the surface (against the faces' pseudonormal) within
+        ``open_depth`` [m]; its main segment is the face nearest to it (the face the contact pairs it with).
+        """
+        from blockage.sides import signed_distances
+
+        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        out = np.zeros(self.m, dtype=bool)
+        if not len(points) or not self.m:
+            return out
+        reach = 2.0 * max(float(tolerance), float(open_depth)) + 1e-300  # capped beyond it: never <= the tolerance
+        near = signed_distances(self.blocker, points, reach, open_depth) <= tolerance
+        if near.any():
+            out[self.owner[self.blocker.distances(points[near], cutoff=reach).faces]] = True
+        return out
+
+
+def touched_faces(vertices, faces, face_sizes, points, tolerance: float, open_depth: float = 0.0) -> np.ndarray:
+    """(m,) bool: the leakage faces that are the main segment of a blocker node ``points`` (k, 3) [m] in contact
+    (:meth:`LeakTree.touched`).
 
     >>> v = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0, 0], [2, 1, 0]])
     >>> f, k = np.array([[0, 1, 2, 3], [1, 4, 5, 2]]), np.array([4, 4])
     >>> touched_faces(v, f, k, [[1.5, 0.5, 0.001], [0.5, 0.5, 0.1]], 0.002).tolist()
     [False, True]
     """
-    from blockage.blocker import Blocker
-    from blockage.sides import signed_distances
-
-    points = np.asarray(points, dtype=float).reshape(-1, 3)
-    out = np.zeros(len(faces), dtype=bool)
-    if not len(points) or not len(faces):
-        return out
-    tri, owner = triangulated(faces, face_sizes)
-    leak = Blocker(np.asarray(vertices, dtype=float), tri)
-    reach = 2.0 * max(float(tolerance), float(open_depth)) + 1e-300  # capped beyond it: never <= the tolerance
-    near = signed_distances(leak, points, reach, open_depth) <= tolerance
-    if near.any():
-        out[owner[leak.distances(points[near], cutoff=reach).faces]] = True
-    return out
+    return LeakTree(vertices, faces, face_sizes).touched(points, tolerance, open_depth)
 
 
 def flagged_nodes(secondary, touched, faces, face_sizes, side: str) -> np.ndarray:

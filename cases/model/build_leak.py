@@ -169,17 +169,28 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
                      surface.edges if e.edge_contact else None)
     knots = _knots(driver, path, driver.lo, driver.hi)
     found = _search(scene, j, field, len(path.x0), knots)
-    track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
-    if surface is not None and path.trajectory is not None:  # face areas that change between frames
-        track = track.on_trajectory(*path.trajectory, surface.faces, surface.face_sizes)
-    elif driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
-        track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
+    if scene.blockage.rule != "exact":  # an FE code's rule: flags sampled at its time steps, used with its lag
+        from cases.model.fe_sampling import fe_leak_track
+
+        track = fe_leak_track(scene, j, found, surface, path, weights, driver, options)
+    else:
+        track = _exact_track(scene, found, surface, path, weights, total, driver, options)
 
     def positions(theta, nodes=None):
         idx = np.arange(len(path.x0)) if nodes is None else np.asarray(nodes)
         return path.positions(np.full(len(idx), float(theta)), idx)
 
     return GeometricArea(track, driver.dynamic is None), (surface, positions)
+
+
+def _exact_track(scene, found, surface, path, weights, total, driver, options) -> AreaTrack:
+    """The exact rule's track: every crossing a switch, face areas that change between frames on a trajectory."""
+    track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
+    if surface is not None and path.trajectory is not None:  # face areas that change between frames
+        track = track.on_trajectory(*path.trajectory, surface.faces, surface.face_sizes)
+    elif driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
+        track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
+    return track
 
 
 def blockage_rule(scene, j) -> dict:
