@@ -19,6 +19,11 @@ END = 0.03
 def plate_scene(tmp_path, fine=False, **blockage_keys):
     """The tilted plate comes down onto a 6 x 6 quad vent, rests and leaves (it covers the vent's x <= 6 mm
     columns); ``fine``: a plate of 0.5 mm triangles whose nodes land inside the vent's faces."""
+    return scene_from_dict(plate_data(tmp_path, fine, **blockage_keys), tmp_path / "scene.toml")
+
+
+def plate_data(tmp_path, fine=False, **blockage_keys) -> dict:
+    """The TOML dict of :func:`plate_scene` (its mesh and table files written into ``tmp_path``)."""
     grid_vent(tmp_path / "vent.obj")
     plate = tilted_plate()
     if fine:
@@ -32,7 +37,7 @@ def plate_scene(tmp_path, fine=False, **blockage_keys):
                          "contact_tolerance": TOL}]
     if blockage_keys:
         data["blockage"] = blockage_keys
-    return scene_from_dict(data, tmp_path / "scene.toml")
+    return data
 
 
 def track_of(scene):

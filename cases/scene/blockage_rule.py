@@ -78,6 +78,8 @@ def check_blockage(scene, path) -> None:
                                                     "trajectories); use rule = 'exact'")
     if not b.sdfblk > 0:
         raise SceneError(path, f"{where}.sdfblk", f"expected a factor in (0, 1], got {b.sdfblk!r}")
+    if scene.fe_run.abstat and not (scene.base / scene.fe_run.abstat).is_file():
+        raise SceneError(path, "fe_run.abstat", f"{scene.fe_run.abstat!r}: file not found")
     names = [c.name for c in scene.cavity]
     for name, number in scene.fe_run.airbags.items():
         if name not in names:
