@@ -51,14 +51,14 @@ def parse_rules(text: str) -> list:
     return ["exact"] + [r for r in dict.fromkeys(rules) if r != "exact"]
 
 
-def parse_steps(text: str) -> list:
-    """The steps [s] of ``--sweep 1e-4,1e-5``, each > 0, largest first."""
+def parse_steps(text: str, option: str = "--sweep") -> list:
+    """The steps [s] of ``--sweep 1e-4,1e-5`` (or ``option``), each > 0, largest first."""
     try:
         steps = [float(s) for s in text.split(",") if s.strip()]
     except ValueError:
         steps = [float("nan")]
     if not steps or not all(s > 0 and np.isfinite(s) for s in steps):
-        raise SceneError("ventsim compare", "--sweep", f"expected steps [s] > 0 separated by commas, got {text!r}")
+        raise SceneError("ventsim compare", option, f"expected steps [s] > 0 separated by commas, got {text!r}")
     return sorted(set(steps), reverse=True)
 
 

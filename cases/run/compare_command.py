@@ -71,7 +71,8 @@ def _command(args) -> int:
 
     rules = parse_rules(args.rules)
     sweep = parse_steps(args.sweep) if args.sweep else ()
-    done = compare(args.scene, rules, args.out, step=args.step, lag=args.lag, sweep=sweep,
+    step = parse_steps(args.step, "--step")[0] if args.step is not None else None
+    done = compare(args.scene, rules, args.out, step=step, lag=args.lag, sweep=sweep,
                    say=None if args.quiet else log.info)
     if not args.quiet:
         print("wrote " + ", ".join(str(p) for p in done["paths"].values()))
@@ -79,14 +80,12 @@ def _command(args) -> int:
 
 
 def add_compare_parser(sub) -> None:
-    from cases.cli import _seconds
-
     c = sub.add_parser("compare", help="run a scene under several blockage rules (exact, abaqus, radioss, "
                                        "lsdyna_cpm, lsdyna_cpg) and compare them")
     c.add_argument("scene", type=Path, help="scene TOML file (with prescribed motion)")
     c.add_argument("--rules", default="exact,abaqus,radioss,lsdyna_cpm,lsdyna_cpg",
                    help="rules separated by commas (exact is always run: the reference)")
-    c.add_argument("--step", type=_seconds, default=None, metavar="SECONDS",
+    c.add_argument("--step", default=None, metavar="SECONDS",
                    help="the FE rules' explicit time step (default: the scene's [blockage] step)")
     c.add_argument("--lag", type=int, default=None, metavar="CYCLES",
                    help="cycles between the flags and their use (default: each rule's own, radioss 1)")
