@@ -3,7 +3,6 @@ certified crossings and the incremental area track."""
 from __future__ import annotations
 
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -13,7 +12,7 @@ from cavity.caution import caution
 from cases.model.area_track import AreaTrack, node_weights
 from cases.model.crossings import RESOLUTION, SearchBudget, certified_crossings
 from cases.scene.errors import SceneError
-from cases.model.mesh_series import SUFFIXES, read_mesh_series
+from cases.model.mesh_series import is_series, read_mesh_series
 from cases.model.gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
 from cases.model.scene_network import GeometricArea
 
@@ -31,9 +30,9 @@ def leak_surface(scene, j, cavity_meshes):
     """(LeakageSurface, the cavity spec it was cut from or None, its own (times, vertices) or None) of exchange j;
     a leakage_surface given as a mesh series (.pvd, .xdmf, .npz) moves on its own."""
     e, where = scene.exchange[j], f"exchange[{j}]"
-    if e.leakage_surface and Path(e.leakage_surface).suffix.lower() in SUFFIXES:
+    if e.leakage_surface and is_series(e.leakage_surface):
         series = read_mesh_series(scene.base / e.leakage_surface, where=f"{where}.leakage_surface",
-                                  scene_path=scene.path)
+                                  scene_path=scene.path, parts=e.parts, units=scene.fe_run.units)
         return blockage.LeakageSurface(series.vertices[0], series.faces), None, (series.times, series.vertices)
     if e.leakage_surface:
         try:

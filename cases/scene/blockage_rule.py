@@ -78,6 +78,7 @@ def check_blockage(scene, path) -> None:
                                                     "trajectories); use rule = 'exact'")
     if not b.sdfblk > 0:
         raise SceneError(path, f"{where}.sdfblk", f"expected a factor in (0, 1], got {b.sdfblk!r}")
+    _check_parts(scene, path)
     if scene.fe_run.abstat and not (scene.base / scene.fe_run.abstat).is_file():
         raise SceneError(path, "fe_run.abstat", f"{scene.fe_run.abstat!r}: file not found")
     names = [c.name for c in scene.cavity]
@@ -96,3 +97,15 @@ def part_ids(path):
             raise SceneError(path, where, f"expected a list of part ids (whole numbers >= 1), got {value!r}")
         return tuple(int(x) for x in value)
     return convert
+
+
+def _check_parts(scene, path) -> None:
+    """`parts` names the parts of an LS-DYNA d3plot series: it needs one."""
+    from cases.model.mesh_series_d3plot import is_d3plot
+
+    for kind, keys in (("cavity", ("mesh_series",)), ("body", ("mesh_series", "vertex_trajectory")),
+                       ("exchange", ("leakage_surface",))):
+        for i, item in enumerate(getattr(scene, kind)):
+            if item.parts and not any(is_d3plot(getattr(item, k)) for k in keys if getattr(item, k)):
+                raise SceneError(path, f"{kind}[{i}].parts", f"parts apply to an LS-DYNA d3plot given as "
+                                                             f"{' or '.join(keys)} (a file named d3plot or *.d3plot)")
