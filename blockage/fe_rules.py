@@ -107,8 +107,8 @@ class LeakTree:
     def refit(self, vertices) -> None:
         self.blocker.refit(np.asarray(vertices, dtype=float))
 
-    def touched(self, points, tolerance: float, open_depth: float = 0.0) -> np.ndarray:
-        """(m,) bool: the faces that are the main segment of a blocker node in contact.
+    def segments(self, points, tolerance: float, open_depth: float = 0.0) -> np.ndarray:
+        """(k,) int: the face that is the main segment of each blocker node, -1 for a node out of contact.
 
         A blocker node (a secondary node of the contact) is in contact when its distance to the leakage surface is
         ``<= tolerance``, or when it lies behind the surface (against the faces' pseudonormal) within
@@ -117,13 +117,25 @@ class LeakTree:
         from blockage.sides import signed_distances
 
         points = np.asarray(points, dtype=float).reshape(-1, 3)
-        out = np.zeros(self.m, dtype=bool)
+        out = np.full(len(points), -1, dtype=np.int64)
         if not len(points) or not self.m:
             return out
         reach = 2.0 * max(float(tolerance), float(open_depth)) + 1e-300  # capped beyond it: never <= the tolerance
-        near = signed_distances(self.blocker, points, reach, open_depth) <= tolerance
-        if near.any():
-            out[self.owner[self.blocker.distances(points[near], cutoff=reach).faces]] = True
+        if not open_depth > 0.0:  # the distance alone decides: one query gives the faces too
+            found = self.blocker.distances(points, cutoff=float(tolerance))
+            near = np.flatnonzero(found.distances <= tolerance)
+            out[near] = self.owner[found.faces[near]]
+            return out
+        near = np.flatnonzero(signed_distances(self.blocker, points, reach, open_depth) <= tolerance)
+        if near.size:
+            out[near] = self.owner[self.blocker.distances(points[near], cutoff=reach).faces]
+        return out
+
+    def touched(self, points, tolerance: float, open_depth: float = 0.0) -> np.ndarray:
+        """(m,) bool: the faces that are the main segment of some blocker node in contact (:meth:`segments`)."""
+        out = np.zeros(self.m, dtype=bool)
+        found = self.segments(points, tolerance, open_depth)
+        out[found[found >= 0]] = True
         return out
 
 

@@ -151,26 +151,53 @@ class MainSegments:
         pts = np.concatenate([self.positions(t) for t in (np.unique(times[[0, -1]]) if not self.moving else times)])
         return pts.min(axis=0) - self.reach, pts.max(axis=0) + self.reach
 
+    def _near(self, pts: np.ndarray) -> np.ndarray:
+        """(k,) bool: blocker nodes that may be within the reach of a fixed leakage surface: within the reach plus
+        the largest face's size of one of its nodes (a cheap bound, :class:`scipy.spatial.cKDTree`)."""
+        if not hasattr(self, "_kd"):
+            from scipy.spatial import cKDTree
+
+            x = self.positions(0.0)
+            tri = self.tree.blocker.faces
+            size = float(np.max(np.linalg.norm(x[tri] - x[tri].mean(axis=1, keepdims=True), axis=2)))
+            self._kd, self._bound = cKDTree(x), self.reach + size
+        return np.isfinite(self._kd.query(pts, distance_upper_bound=self._bound)[0])
+
     def touched(self, times) -> dict:
         """{k: (faces touched,) int} for the k where some face is touched at ``times[k]``."""
         times = np.asarray(times, dtype=float)
         out = {}
-        for start in range(0, len(times), 4096):
-            chunk = times[start:start + 4096]
+        for start in range(0, len(times), 2048):
+            chunk = times[start:start + 2048]
             lo, hi = self._leak_box(chunk)
+            pts, owner = [], []
             for k, t in enumerate(chunk):
-                pts = [b.vertices_at(float(t)) for b in self.bodies]
-                pts = np.concatenate(pts) if pts else np.zeros((0, 3))
-                pts = pts[np.all((pts >= lo) & (pts <= hi), axis=1)]
-                if not len(pts):
+                x = np.concatenate([b.vertices_at(float(t)) for b in self.bodies]) if self.bodies else np.zeros((0, 3))
+                x = x[np.all((x >= lo) & (x <= hi), axis=1)]
+                if not len(x):
                     continue
-                if self.moving:
+                if self.moving:  # one query per step on the surface where it is
                     self.tree.refit(self.positions(float(t)))
-                self.queries += len(pts)
-                faces = np.flatnonzero(self.tree.touched(pts, self.tolerance, self.open_depth))
-                if faces.size:
-                    out[start + k] = faces
+                    self._record(out, start + k, x, np.zeros(len(x), np.int64))
+                else:
+                    pts.append(x)
+                    owner.append(np.full(len(x), start + k))
+            if pts:  # a fixed surface: one query for the whole chunk
+                pts, owner = np.concatenate(pts), np.concatenate(owner)
+                near = self._near(pts)
+                self._record(out, None, pts[near], owner[near])
         return out
+
+    def _record(self, out: dict, k, pts, owner) -> None:
+        """Add to ``out`` the faces touched by ``pts`` (of steps ``owner``, or all of step ``k``)."""
+        self.queries += len(pts)
+        faces = self.tree.segments(pts, self.tolerance, self.open_depth)
+        hit = faces >= 0
+        steps = (np.full(len(pts), k) if k is not None else owner)[hit]
+        pairs = np.unique(np.column_stack([steps, faces[hit]]), axis=0)  # sorted by step, then face
+        cut = np.flatnonzero(np.diff(pairs[:, 0])) + 1
+        for group in np.split(pairs, cut) if len(pairs) else ():
+            out[int(group[0, 0])] = group[:, 1]
 
 
 def _corner_changes(counts0, counts1, starts) -> tuple:
