@@ -143,7 +143,9 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--update", action="store_true", help="write the reference histories instead of comparing")
     c.set_defaults(func=_check)
     from cases.sweep.parallel import add_sweep_parser
+    from cases.run.compare_command import add_compare_parser
     add_sweep_parser(sub)
+    add_compare_parser(sub)
     add_import_parser(sub)
     return p
 

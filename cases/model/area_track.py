@@ -177,14 +177,17 @@ class AreaTrack:
         """Frame times [s] of a surface on a vertex trajectory (its face areas have kinks there), else empty."""
         return moving_frame_times(self.moving) if self.moving is not None else np.zeros(0)
 
-    def on_trajectory(self, times, vertices, faces, face_sizes) -> "AreaTrack":
+    def on_trajectory(self, times, vertices, faces, face_sizes, flag_faces=None) -> "AreaTrack":
         """This track for a surface whose nodes move linearly between frames: ``times`` (K,) [s], ``vertices``
         (K, n, 3) [m] (θ is time), with its pack of :mod:`blockage.moving_area` (frame-interval coefficients of
-        every face, the crossings of each interval, an effective area and permeability as this track's)."""
+        every face, the crossings of each interval, an effective area and permeability as this track's);
+        ``flag_faces``: the ids the crossings' nodes are of, per face (default ``faces``: the crossings are the
+        nodes'; the corners of :mod:`cases.model.fe_sampling` otherwise)."""
         src = self.source
         delta = src.state.astype(np.int64) - _previous_states(src).astype(np.int64)
-        moving = pack(times, area_coefficients(times, vertices, faces, face_sizes), faces, face_sizes, src.initial,
-                      self.applied, src.node, delta, self.effective_area, self.permeability)
+        moving = pack(times, area_coefficients(times, vertices, faces, face_sizes),
+                      faces if flag_faces is None else flag_faces, face_sizes, src.initial, self.applied, src.node,
+                      delta, self.effective_area, self.permeability)
         return replace(self, moving=moving)
 
 

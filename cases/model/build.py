@@ -160,7 +160,7 @@ def _volume(scene: Scene, i: int):
 def _geometry(scene: Scene, t_end: float) -> dict:
     """Bodies, the θ driver, wrapped volumes and blocked areas of a scene with geometry."""
     bodies = build_bodies(scene)
-    series = {c.name: series_mesh(scene, c.mesh_series, f"cavity[{i}].mesh_series")
+    series = {c.name: series_mesh(scene, c.mesh_series, f"cavity[{i}].mesh_series", c.parts)
               for i, c in enumerate(scene.cavity) if c.mesh_series}
     meshes = {c.name: cavity_mesh(scene, i) for i, c in enumerate(scene.cavity) if c.mesh and not c.mesh_series}
     meshes.update({name: mesh for name, (_, mesh) in series.items()})

@@ -47,17 +47,19 @@ def _trajectory(scene, b, mesh, where) -> VertexTrajectory:
     from cases.model.mesh_series import read_mesh_series
 
     series = read_mesh_series(scene.base / b.vertex_trajectory, where=where, scene_path=scene.path,
-                              reference_vertices=np.asarray(mesh.vertices), reference_faces=np.asarray(mesh.faces))
+                              reference_vertices=np.asarray(mesh.vertices), reference_faces=np.asarray(mesh.faces),
+                              parts=b.parts, units=scene.fe_run.units)
     return VertexTrajectory(series.times, series.vertices)
 
 
-def series_mesh(scene, file: str, where: str):
-    """(MeshSeries, trimesh of frame 0 in the series' own node order) of a mesh series."""
+def series_mesh(scene, file: str, where: str, parts=()):
+    """(MeshSeries, trimesh of frame 0 in the series' own node order) of a mesh series (``parts``: of a d3plot)."""
     import trimesh
 
     from cases.model.mesh_series import read_mesh_series
 
-    series = read_mesh_series(scene.base / file, where=where, scene_path=scene.path)
+    series = read_mesh_series(scene.base / file, where=where, scene_path=scene.path, parts=parts,
+                              units=scene.fe_run.units)
     return series, trimesh.Trimesh(series.vertices[0], series.triangles(), process=False)
 
 
@@ -71,7 +73,7 @@ def build_bodies(scene) -> dict:
         except ValueError as exc:
             raise SceneError(scene.path, f"{where}.axis", str(exc)) from None
         if b.mesh_series:
-            motion, mesh = series_mesh(scene, b.mesh_series, f"{where}.mesh_series")
+            motion, mesh = series_mesh(scene, b.mesh_series, f"{where}.mesh_series", b.parts)
             out[b.name] = (Body(b.name, mesh, axis, motion), blockage.Blocker(mesh))
             continue
         mesh = _body_mesh(scene, b, where)

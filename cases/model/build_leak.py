@@ -3,7 +3,6 @@ certified crossings and the incremental area track."""
 from __future__ import annotations
 
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -13,7 +12,7 @@ from cavity.caution import caution
 from cases.model.area_track import AreaTrack, node_weights
 from cases.model.crossings import RESOLUTION, SearchBudget, certified_crossings
 from cases.scene.errors import SceneError
-from cases.model.mesh_series import SUFFIXES, read_mesh_series
+from cases.model.mesh_series import is_series, read_mesh_series
 from cases.model.gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
 from cases.model.scene_network import GeometricArea
 
@@ -31,9 +30,9 @@ def leak_surface(scene, j, cavity_meshes):
     """(LeakageSurface, the cavity spec it was cut from or None, its own (times, vertices) or None) of exchange j;
     a leakage_surface given as a mesh series (.pvd, .xdmf, .npz) moves on its own."""
     e, where = scene.exchange[j], f"exchange[{j}]"
-    if e.leakage_surface and Path(e.leakage_surface).suffix.lower() in SUFFIXES:
+    if e.leakage_surface and is_series(e.leakage_surface):
         series = read_mesh_series(scene.base / e.leakage_surface, where=f"{where}.leakage_surface",
-                                  scene_path=scene.path)
+                                  scene_path=scene.path, parts=e.parts, units=scene.fe_run.units)
         return blockage.LeakageSurface(series.vertices[0], series.faces), None, (series.times, series.vertices)
     if e.leakage_surface:
         try:
@@ -169,17 +168,28 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
                      surface.edges if e.edge_contact else None)
     knots = _knots(driver, path, driver.lo, driver.hi)
     found = _search(scene, j, field, len(path.x0), knots)
-    track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
-    if surface is not None and path.trajectory is not None:  # face areas that change between frames
-        track = track.on_trajectory(*path.trajectory, surface.faces, surface.face_sizes)
-    elif driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
-        track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
+    if scene.blockage.rule != "exact":  # an FE code's rule: flags sampled at its time steps, used with its lag
+        from cases.model.fe_sampling import fe_leak_track
+
+        track = fe_leak_track(scene, j, found, surface, path, weights, driver, options)
+    else:
+        track = _exact_track(scene, found, surface, path, weights, total, driver, options)
 
     def positions(theta, nodes=None):
         idx = np.arange(len(path.x0)) if nodes is None else np.asarray(nodes)
         return path.positions(np.full(len(idx), float(theta)), idx)
 
     return GeometricArea(track, driver.dynamic is None), (surface, positions)
+
+
+def _exact_track(scene, found, surface, path, weights, total, driver, options) -> AreaTrack:
+    """The exact rule's track: every crossing a switch, face areas that change between frames on a trajectory."""
+    track = AreaTrack.build(weights, total, found, driver.lo, driver.hi, **options)
+    if surface is not None and path.trajectory is not None:  # face areas that change between frames
+        track = track.on_trajectory(*path.trajectory, surface.faces, surface.face_sizes)
+    elif driver.dynamic is None and GROUP_WINDOW > 0.0:  # clusters of crossings within √rtol share one restart
+        track = track.grouped(GROUP_WINDOW * np.sqrt(scene.solver.rtol) * (driver.hi - driver.lo))
+    return track
 
 
 def blockage_rule(scene, j) -> dict:

@@ -28,14 +28,20 @@ import numpy as np
 from cases.model.bodies import VertexTrajectory
 from cases.scene.errors import SceneError
 from cases.model.mesh_series_checks import EDGE_RATIO, REFERENCE_RTOL, RING_MISFIT, check_frames
+from cases.model.mesh_series_d3plot import is_d3plot, read_d3plot
 from cases.model.mesh_series_io import SeriesInvalid, read_npz, read_pvd, read_xdmf
 from cases.model.mesh_series_write import write_npz, write_pvd, write_xdmf
 
-__all__ = ["MeshSeries", "read_mesh_series", "write_pvd", "write_xdmf", "write_npz",
+__all__ = ["MeshSeries", "read_mesh_series", "write_pvd", "write_xdmf", "write_npz", "is_series",
            "EDGE_RATIO", "RING_MISFIT", "REFERENCE_RTOL", "SUFFIXES"]
 
 #: The readers by file suffix.
 SUFFIXES = {".pvd": "ParaView series", ".xdmf": "XDMF time series", ".xmf": "XDMF time series", ".npz": "NumPy .npz"}
+
+
+def is_series(name) -> bool:
+    """A file read as a mesh series: a known suffix (:data:`SUFFIXES`) or an LS-DYNA d3plot."""
+    return Path(name).suffix.lower() in SUFFIXES or is_d3plot(name)
 
 
 def _frozen(values, dtype) -> np.ndarray:
@@ -124,7 +130,7 @@ class MeshSeries(VertexTrajectory):
 
 
 def read_mesh_series(path, *, where: str = "", scene_path=None, reference_vertices=None, reference_faces=None,
-                     reference_rtol: float = REFERENCE_RTOL) -> MeshSeries:
+                     reference_rtol: float = REFERENCE_RTOL, parts=(), units: str = "SI") -> MeshSeries:
     """Read and check a mesh series; the reader is chosen by the suffix (:data:`SUFFIXES`).
 
     Parameters
@@ -140,6 +146,8 @@ def read_mesh_series(path, *, where: str = "", scene_path=None, reference_vertic
         ``reference_rtol`` x its bounding-box diagonal.
     reference_faces : (m, 3) or (m, 4) int, optional
         Faces for an .npz without a ``faces`` array.
+    parts, units : tuple of int, str
+        An LS-DYNA d3plot (:mod:`cases.model.mesh_series_d3plot`): the part ids of the surface, the unit system.
 
     Raises
     ------
@@ -154,13 +162,18 @@ def read_mesh_series(path, *, where: str = "", scene_path=None, reference_vertic
             return SceneError(path, where, message)
         return SceneError(scene_path, where, f"{path}: {message}")
 
-    if kind not in SUFFIXES:
+    d3plot = is_d3plot(path)
+    if kind not in SUFFIXES and not d3plot:
         raise error(f"unknown mesh-series format {path.suffix!r}: expected one of "
-                    f"{', '.join(f'{s} ({name})' for s, name in SUFFIXES.items())}")
+                    f"{', '.join(f'{s} ({name})' for s, name in SUFFIXES.items())} or an LS-DYNA d3plot")
+    if parts and not d3plot:
+        raise error(f"parts {list(parts)} apply to an LS-DYNA d3plot only (a file named d3plot or *.d3plot)")
     if not path.is_file():
         raise error("file not found")
     try:
-        if kind == ".pvd":
+        if d3plot:
+            frames = read_d3plot(path, parts, units)
+        elif kind == ".pvd":
             frames = read_pvd(path)
         elif kind == ".npz":
             frames = read_npz(path, reference_faces)

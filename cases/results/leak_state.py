@@ -76,6 +76,9 @@ def leak_state(model, trajectory, j: int, t: float) -> LeakState:
     tol = spec.contact_tolerance
     res = blockage.evaluate(leak, geo["driver"].placed(spec.blocked_by)(th), tol, cutoff=4 * tol)
     active = np.asarray(track.active_at(th), dtype=bool)
-    fraction = active_counts(active, leak.faces, leak.face_sizes) / np.asarray(leak.face_sizes, dtype=float)
+    if hasattr(track.source, "face_fractions"):  # an FE code's rule: its own face fractions (whole elements, SDFBLK)
+        fraction = track.source.face_fractions(th)
+    else:
+        fraction = active_counts(active, leak.faces, leak.face_sizes) / np.asarray(leak.face_sizes, dtype=float)
     return LeakState(t, leak, active, np.clip(fraction, 0.0, 1.0), res.distances, leak_area_at(track, th),
                      open_area_at(track, th))

@@ -66,10 +66,11 @@ def write_summary(path: Path, summary: dict) -> None:
         tmp.write_text(json.dumps(_plain(summary), indent=2) + "\n")
 
 
-def history_figure(columns: list, history: np.ndarray, title: str = ""):
+def history_figure(columns: list, history: np.ndarray, title: str = "", overlay: dict | None = None):
     """The history figure: pressure, temperature, mass flows (exchanges and inflators), exchange areas and, where
     the scene has them, blocked fractions, body displacements and peak contact pressure against time, one panel
-    each (matplotlib, Agg); returns the ``Figure``."""
+    each (matplotlib, Agg); ``overlay`` {cavity: FePressure} draws an FE run's pressure dashed over ventsim's
+    (:mod:`cases.results.fe_pressure`); returns the ``Figure``."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -89,6 +90,9 @@ def history_figure(columns: list, history: np.ndarray, title: str = ""):
         for i, c in enumerate(columns):
             if c.endswith(suffix) and not c.endswith("gauge_pressure [Pa]"):
                 ax.plot(t * 1e3, history[:, i] * factor, label=c.split(" [")[0])
+        if suffix == "pressure [Pa]":
+            for name, fe in (overlay or {}).items():
+                ax.plot(fe.times * 1e3, fe.pressures * factor, "--", color="k", lw=1, label=f"{name} (FE run)")
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
@@ -101,9 +105,9 @@ def history_figure(columns: list, history: np.ndarray, title: str = ""):
     return fig
 
 
-def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "") -> None:
+def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "", overlay=None) -> None:
     """:func:`history_figure` written to the PNG ``path``."""
-    fig = history_figure(columns, history, title)
+    fig = history_figure(columns, history, title, overlay)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=100, format="png")
 
@@ -114,7 +118,10 @@ def write_results(results, out: Path) -> dict:
     paths = {"history": out / "history.csv", "summary": out / "summary.json", "plot": out / "history.png"}
     write_history(paths["history"], results.columns, results.history)
     write_summary(paths["summary"], results.summary)
-    plot_history(paths["plot"], results.columns, results.history, results.model.scene.title)
+    from cases.results.fe_pressure import scene_fe_pressures
+
+    plot_history(paths["plot"], results.columns, results.history, results.model.scene.title,
+                 scene_fe_pressures(results.model.scene))
     if getattr(results, "contact", None) is not None:
         paths["contact"] = out / "contact.npz"
         with atomic_path(paths["contact"]) as tmp:

@@ -15,7 +15,8 @@ SECTIONS = [("Top level", s.Scene, ""), ("[time]", s.TimeSpec, "time."), ("[solv
             ("[[cavity]]", s.CavitySpec, "cavity."), ("[[cavity.inflator]]", s.InflatorSpec, "cavity.inflator."),
             ("[[cavity.wall_materials]]", s.WallMaterialSpec, "cavity.wall_materials."),
             ("[[exchange]]", s.ExchangeSpec, "exchange."), ("[[body]]", s.BodySpec, "body."),
-            ("[[contact]]", s.ContactSpec, "contact."), ("[limits]", s.LimitsSpec, "limits.")]
+            ("[[contact]]", s.ContactSpec, "contact."), ("[limits]", s.LimitsSpec, "limits."),
+            ("[blockage]", s.BlockageSpec, "blockage."), ("[fe_run]", s.FeRunSpec, "fe_run.")]
 
 
 def key_reference() -> str:

@@ -17,6 +17,7 @@ from cases.scene import law_keys
 from cases.scene.errors import SceneError
 from cases.scene.schema import key, parse
 from cases.scene.contact import ContactSpec
+from cases.scene.blockage_rule import BlockageSpec, FeRunSpec, part_ids
 from cases.scene.validate import register_specs, validate_scene
 from cases.scene.values import composition as _composition, cp_coefficients, names_list as _names, vector as _vector
 from cases.scene.tables_io import read_text, table_or_constant
@@ -126,6 +127,7 @@ class CavitySpec:
     mesh_series: str = key("the cavity surface as a series of closed meshes (.pvd, .xdmf or .npz), linear in "
                            "time between frames: exact volume; a leakage_box vent moves and stretches with it",
                            default="")
+    parts: tuple = key("mesh_series from an LS-DYNA d3plot: the part ids of the surface", default=())
     added_volume: float = key("volume added to the geometric volume", "m^3", default=0.0, check="nonnegative")
     minimum_volume: float = key("volume used in the equation of state when V falls below it", "m^3",
                                 default=0.0, check="nonnegative")
@@ -208,8 +210,9 @@ class ExchangeSpec(law_keys.LawKeys, _ExchangeHead):  # the laws' keys (cases.sc
     delta_area: bool = key("activation: current leakage area minus the area at activation (Abaqus DELTA "
                            "LEAKAGE AREA)", default=False)
     leakage_surface: str = key("leakage surface mesh file (triangles or quads, metres), or a mesh series "
-                               "(.pvd, .xdmf, .npz) moving on its own; the area is then its unblocked area",
+                               "(.pvd, .xdmf, .npz, d3plot) moving on its own; its area is its unblocked area",
                                default="")
+    parts: tuple = key("leakage_surface from an LS-DYNA d3plot: the part ids of the surface", default=())
     leakage_box: tuple = key("or: the faces of the `from` cavity's mesh inside this box: xmin, ymin, zmin, "
                              "xmax, ymax, zmax", "m", default=())
     blocked_by: tuple = key("bodies that block the leakage surface", default=())
@@ -247,7 +250,8 @@ class BodySpec:
     vertex_trajectory: str = key("prescribed .npz with 'times' (k,) [s] and 'vertices' (k, n, 3) [m] for the "
                                  "mesh's n vertices (e.g. from a finite-element run)", default="")
     mesh_series: str = key("prescribed series of the body's mesh (.pvd with .vtu/.vtp frames, .xdmf, or .npz "
-                           "with 'times', 'vertices', 'faces'), linear in time between frames", default="")
+                           "with 'times', 'vertices', 'faces', or d3plot), linear in time between frames", default="")
+    parts: tuple = key("mesh_series from an LS-DYNA d3plot: the part ids of the body", default=())
     mass: float = key("dynamic body: mass (0: prescribed motion)", "kg", default=0.0, check="nonnegative")
     initial_velocity: float = key("dynamic body: initial speed along `axis`", "m/s", default=0.0, check="finite")
     gravity: float = key("dynamic body: acceleration along `axis`", "m/s^2", default=0.0, check="finite")
@@ -274,6 +278,8 @@ class Scene:
     contact: tuple = key("[[contact]] tables: contact of the dynamic body with a seat surface (docs/contact.md)",
                          default=())
     limits: LimitsSpec = key("[limits] table: work budgets", default=LimitsSpec())
+    blockage: BlockageSpec = key("[blockage] table: an FE code's blockage rule", default=BlockageSpec())
+    fe_run: FeRunSpec = key("[fe_run] table: the FE run replayed (units, abstat)", default=FeRunSpec())
     _path: str = ""
 
     @property
@@ -357,12 +363,14 @@ def scene_from_dict(data: dict, path) -> Scene:
         "solver": lambda v, w: parse(SolverSpec, v, path, w),
         "ambient": lambda v, w: parse(AmbientSpec, v, path, w, nested={"gas": composition}),
         "species": many(SpeciesSpec, {"cp": lambda v, w: cp_coefficients(v, path, w)}),
-        "cavity": many(CavitySpec, cavity_nested),
-        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3, True),
+        "cavity": many(CavitySpec, {**cavity_nested, "parts": part_ids(path)}),
+        "body": many(BodySpec, {"sphere": vector(4), "box": vector(6), "axis": vector(3, True), "parts": part_ids(path),
                                 "rotation_axis": vector(3, True), "rotation_centre": vector(3)}),
         "contact": many(ContactSpec),
         "limits": lambda v, w: parse(LimitsSpec, v, path, w),
-        "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list,
+        "blockage": lambda v, w: parse(BlockageSpec, v, path, w),
+        "fe_run": lambda v, w: parse(FeRunSpec, v, path, w),
+        "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list, "parts": part_ids(path),
                                         "amplitude": table("area amplitude [-]"),
                                         **{k.name: number_or_table(law_keys.label(k)) for k in law_keys.of_kind("cd")},
                                         **{k.name: table(law_keys.label(k)) for k in law_keys.of_kind("table")}}),
@@ -374,4 +382,5 @@ def scene_from_dict(data: dict, path) -> Scene:
 
 register_specs(Scene=Scene, TimeSpec=TimeSpec, SolverSpec=SolverSpec, AmbientSpec=AmbientSpec, LimitsSpec=LimitsSpec,
                SpeciesSpec=SpeciesSpec, CavitySpec=CavitySpec, InflatorSpec=InflatorSpec, ExchangeSpec=ExchangeSpec,
-               BodySpec=BodySpec, ContactSpec=ContactSpec, WallMaterialSpec=WallMaterialSpec)
+               BodySpec=BodySpec, ContactSpec=ContactSpec, WallMaterialSpec=WallMaterialSpec,
+               BlockageSpec=BlockageSpec, FeRunSpec=FeRunSpec)

@@ -72,8 +72,15 @@ def _mesh_files(scene):
                               ("exchange", "leakage_surface", False), ("contact", "seat_mesh", False)):
         for i, item in enumerate(getattr(scene, kind)):
             name = getattr(item, key)
-            if name and not str(name).lower().endswith(SERIES_SUFFIXES):
+            if name and not str(name).lower().endswith(SERIES_SUFFIXES) and not _d3plot(name):
                 yield f"{kind}[{i}].{key}", name, closed
+
+
+def _d3plot(name) -> bool:
+    """An LS-DYNA d3plot (a mesh series checked by cases.model.mesh_series_d3plot)."""
+    from cases.model.mesh_series_d3plot import is_d3plot
+
+    return is_d3plot(name)
 
 
 def check_meshes(scene, path) -> None:

@@ -22,6 +22,7 @@ from cases.scene.errors import SceneError
 from cases.scene.schema import check_fields, toml_name
 from cases.scene.checks import check_cross_references
 from cases.scene.contact import check_contacts
+from cases.scene.blockage_rule import check_blockage
 from cases.scene.meshes import check_meshes
 from cases.scene.values import composition, cp_coefficients, names_list, table_value, vector
 from cases.scene.tables_io import read_table
@@ -79,7 +80,7 @@ def _validate(scene, raw) -> None:
     path = scene.path if scene._path else PYTHON_SCENE
     check_fields(scene, path, "")
     for name, cls in (("time", sc.TimeSpec), ("solver", sc.SolverSpec), ("ambient", sc.AmbientSpec),
-                      ("limits", sc.LimitsSpec)):
+                      ("limits", sc.LimitsSpec), ("blockage", sc.BlockageSpec), ("fe_run", sc.FeRunSpec)):
         _spec(getattr(scene, name), cls, path, name)
     for name, cls_name in _SPEC_LISTS.items():
         items = getattr(scene, name)
@@ -96,6 +97,7 @@ def _validate(scene, raw) -> None:
 
         check_real_gas(scene)
     check_contacts(scene, path, raw if raw is not None else _given(scene))
+    check_blockage(scene, path)
     _budgets(scene, path)
     _held_tables(scene, path)
     check_meshes(scene, path)
