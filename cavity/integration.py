@@ -5,9 +5,9 @@ The model is not known here: a system gives a right-hand side, the times where i
 root finding on the dense output. The solver integrates up to each breakpoint or event and restarts after it,
 so no step ever straddles a discontinuity.
 
-A cavity network lowers itself to arrays (``compiled_solver()``: :class:`exchange.compiled.CompiledNetwork`), and
+A cavity network lowers itself to arrays (``compiled_solver()``: :class:`exchange.engine.engine.Engine`), and
 one engine runs it: with DOP853 (the default) the whole integration is one numba call (:mod:`cavity.rk_compiled`,
-``exchange.compiled_solver``: the same steps, switches and restarts as solve_ivp's DOP853, except that a trial step
+``exchange.engine.solver``: the same steps, switches and restarts as solve_ivp's DOP853, except that a trial step
 whose stage finds no gas state is retried shorter where solve_ivp stops); with scipy's other methods (LSODA, Radau,
 BDF, RK45, RK23) ``solve_ivp`` steps the same compiled right-hand side, switch functions and switch actions
 (:mod:`exchange.lowered_system`), segment by segment. A network that does not lower is refused with the reason.

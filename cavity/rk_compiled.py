@@ -1,6 +1,6 @@
 """Dormand–Prince 8(5,3) (DOP853) pieces compiled with numba, and the dense output of a chain of its steps.
 
-The model-specific loop that calls a right-hand side lives with the model (``exchange.compiled_solver``); this
+The model-specific loop that calls a right-hand side lives with the model (``exchange.engine.solver``); this
 module holds what does not depend on it: the tableau, scipy's error norm and step-size rule, scipy's initial
 step, the 7th-order dense output and :class:`DenseSteps`, the Python view of the recorded steps that
 :class:`cavity.integration.Trajectory` holds as a segment. Everything mirrors ``scipy.integrate.DOP853``

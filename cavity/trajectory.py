@@ -26,7 +26,7 @@ class Trajectory:
     stalls: int = 0  # events in a row at the same time
     path: str = "python"  # which integrator ran: "compiled" (cavity.rk_compiled), "compiled, solve_ivp" (scipy's
     #: methods on the engine's kernels) or "python" (solve_ivp on a plain Python system)
-    #: compiled path: (step records, segment table) of the compiled solver, read back by exchange.compiled_history
+    #: compiled path: (step records, segment table) of the compiled solver, read back by exchange.readback.history
     compiled_records: tuple | None = field(default=None, repr=False)
 
     def __call__(self, t: float) -> np.ndarray:

@@ -1,6 +1,6 @@
 """The network of a scene with bodies: geometric leakage areas, wrapped volumes and a dynamic impactor.
 
-Extends :class:`exchange.network.Network` with two unknowns per dynamic body (displacement s [m] and speed v
+Extends :class:`exchange.network.network.Network` with two unknowns per dynamic body (displacement s [m] and speed v
 [m/s] along its axis) and with exchanges whose area comes from a :class:`cases.model.area_track.AreaTrack`. For
 prescribed motion the area's jumps are known times (breakpoints); for a dynamic body they are switch
 functions s − s_k on the two crossings next to the body's current displacement.

@@ -65,7 +65,7 @@ class Wrapper:
 class WrappedVolume:
     """Volume of a closed mesh wrapped around bodies, as a C² spline of θ [m^3]; ``theta_of()`` gives θ now.
 
-    The compiled engine evaluates the spline itself (:func:`exchange.compiled_tables.spline_piece_value`), for a
+    The compiled engine evaluates the spline itself (:func:`exchange.engine.tables.spline_piece_value`), for a
     θ that is a state on the piece a segment holds (its knots are switches)."""
 
     spline: object

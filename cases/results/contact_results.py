@@ -30,7 +30,7 @@ def contact_columns(model) -> list:
 
 def nodal_state(fast, t, y):
     """(CPRESS per node, status per node, seat force on the body [N]) at (t, y) in the discrete state loaded in
-    ``fast``, the network's :class:`exchange.compiled.CompiledNetwork` (:func:`exchange.readback.values.load_mode`)."""
+    ``fast``, the network's :class:`exchange.engine.engine.Engine` (:func:`exchange.readback.values.load_mode`)."""
     net = fast.network
     c, k = net.contact, net.body_offset
     reaction = body_values(fast, t, y)[2] if net.held else 0.0

@@ -1,6 +1,6 @@
 """Normal-contact laws as numba kernels, each written once: pressure-overclosure, contact damping, and the seat's
 nodal pressures and force on a rigid body (used by :mod:`exchange.contact`, :mod:`cases.model.seat_contact` and the
-compiled path, :mod:`exchange.compiled_body`).
+engine, :mod:`exchange.engine.body`).
 
 After Abaqus Analysis User's Guide 37.1.2 ("Contact pressure-overclosure relationships") and 37.1.3 ("Contact
 damping"); ``docs/contact.md``. Sign conventions (SI): overclosure h [m] > 0 is penetration, clearance c = −h;

@@ -25,7 +25,7 @@ EI, EF = ExchangeInt, ExchangeFloat
 
 @njit(cache=True)
 def base_area(M, j, t):
-    """Leakage area of exchange j before activation [m^2] (:meth:`exchange.network.Network.base_area`): the
+    """Leakage area of exchange j before activation [m^2] (:meth:`exchange.network.network.Network.base_area`): the
     constant, a step table of time, or the area of the dynamic body's interval ``M.interval[j]``, times the square
     of its mesh scale; of a surface on a vertex trajectory the step table gives the interval of the active set and
     the next table holds the pack of :func:`blockage.moving_area.moving_leak_area`."""

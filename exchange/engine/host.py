@@ -81,7 +81,7 @@ def host_of(h: int) -> Host:
 
 
 def cavity_state(h: int, i: int, t: float, y, st, T_guess: float) -> float:
-    """Fill row i of the state scratch ``st`` (:mod:`exchange.compiled_rhs`) with real-gas cavity i's state at
+    """Fill row i of the state scratch ``st`` (:class:`exchange.engine.layout.StateColumn`) with real-gas cavity i's state at
     (t, y) (:meth:`cavity.realgas_cavity.RealGasCavity.state` and its gas point); returns T [K], NaN if it
     failed."""
     host = HOSTS[h]

@@ -101,7 +101,7 @@ class ExchangeInt(IntEnum):
     TWO_WAY = 2  # to ambient: ambient gas may flow back
     AMPLITUDE = 3  # area multiplier table of time, −1: none
     WINDOW = 4  # has a time window (open time, close time)
-    EQUALISE = 5  # has an equalised mode (exchange.equalised)
+    EQUALISE = 5  # has an equalised mode (exchange.network.equalised)
     POP = 6  # has a pop pressure
     LAW = 7  # slot of its law in ``laws`` (exchange.laws.registry)
     AREA_TABLE = 8  # its area's step table (AreaKind), −1: the constant AREA

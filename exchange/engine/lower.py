@@ -1,4 +1,4 @@
-"""Lowering a network (:class:`exchange.network.Network`, or a scene network with its geometry) onto the engine: its
+"""Lowering a network (:class:`exchange.network.network.Network`, or a scene network with its geometry) onto the engine: its
 model (:mod:`exchange.engine.layout`), its switch table and the Python objects it keeps (:class:`exchange.engine.
 engine.Engine`), or why it cannot run there (:func:`unsupported_reason`).
 

@@ -53,7 +53,7 @@ def fabric_leakage_mass_flow(p_up: float, T_up: float, p_down: float, R: float, 
 
         \dot m = \dot m_{orifice}(p_e, T_e, p_{down};\; A_{eff} = \phi A,\; C_d)
 
-    with :math:`\dot m_{orifice}` the isentropic orifice law of :func:`exchange.orifice.orifice_mass_flow`
+    with :math:`\dot m_{orifice}` the isentropic orifice law of :func:`exchange.laws.orifice.orifice_mass_flow`
     (choked below the critical pressure ratio).
 
     Parameters
@@ -202,7 +202,7 @@ def anagonye_wang_mass_flow(p_up: float, T_up: float, p_down: float, R: float, g
     Parameters
     ----------
     p_up, T_up, p_down, R, gamma : float
-        As in :func:`exchange.orifice.orifice_mass_flow` [Pa, K, Pa, J/(kg K), -].
+        As in :func:`exchange.laws.orifice.orifice_mass_flow` [Pa, K, Pa, J/(kg K), -].
     area, area0 : float
         Current and initial fabric area [m^2]; ``area0`` > 0.
     X0, X1, X2, X3 : float

@@ -282,7 +282,7 @@ def real_gas_mass_flux(fluid, rho0: float, T0: float, p_down: float) -> float:
 
 @dataclass(frozen=True)
 class RealGasOrificeLaw:
-    """The orifice law (:class:`exchange.laws.OrificeLaw`) with the upstream cavity's real-gas equation of state.
+    """The orifice law (:class:`exchange.laws.orifice.OrificeLaw`) with the upstream cavity's real-gas equation of state.
 
     ``mass_flow(up, p_down, area, t) = Cd·A·G`` with G from :func:`real_gas_mass_flux` when the upstream gas point
     carries a fluid (``up.fluid``, a real-gas cavity), else the ideal law (gas flowing back in from ambient).

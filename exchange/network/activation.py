@@ -2,7 +2,7 @@
 
 Abaqus *FLUID EXCHANGE ACTIVATION (amplitude, DELTA LEAKAGE AREA), Radioss vents (open at Tstart or once
 p > p_ext + ΔPdef has held for ΔtPdef; close at Tstop), LS-DYNA PPOP (opens at a gauge pressure, stays open).
-The discrete part (armed → holding → open) is the compiled engine's (:mod:`exchange.compiled_modes`); this module
+The discrete part (armed → holding → open) is the engine's (:mod:`exchange.engine.modes`); this module
 holds the definition and the area rule, which the engine calls.
 """
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """How a cavity network reaches the engine: lowered once and kept, or why it does not lower (a mixin of
-:class:`exchange.network.Network`)."""
+:class:`exchange.network.network.Network`)."""
 from __future__ import annotations
 
 __all__ = ["NetworkLowering"]
@@ -38,7 +38,7 @@ class NetworkLowering:
 
 def _hosted_here(fast, net) -> bool:
     """A lowered network's hosted parts are registered in this process for ``net`` (not, e.g., for the network
-    it was copied or unpickled from): else it is lowered again (:mod:`exchange.hosted`)."""
+    it was copied or unpickled from): else it is lowered again (:mod:`exchange.engine.host`)."""
     if fast is None or fast.host < 0:
         return True
     from exchange.engine.host import HOSTS

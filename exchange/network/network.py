@@ -1,5 +1,5 @@
 """A network of cavities joined by exchanges: the unknowns of a whole scene's gas, their layout and the discrete
-state, which the compiled engine lowers and integrates (:mod:`exchange.compiled`: its right-hand side, switches and
+state, which the compiled engine lowers and integrates (:mod:`exchange.engine`: its right-hand side, switches and
 events; :mod:`exchange.readback.values`: its values at an instant).
 
 Unknown vector layout::

@@ -1,5 +1,5 @@
-"""PRESSURE AND MASS and DUAL PRESSURE inflators on the engine (exchange.compiled_inflators,
-exchange.compiled_sources.inflator_flow): its two integrators against each other, its right-hand side against the
+"""PRESSURE AND MASS and DUAL PRESSURE inflators on the engine (exchange.engine.inflators,
+exchange.engine.inflators.inflator_flow): its two integrators against each other, its right-hand side against the
 reference assembly, and against an independent reference.
 
 The scene: a vented 60 L tank of constant-cp N2 fed from 5 ms (scale 0.9) by an inflator of Abaqus-deck air, whose

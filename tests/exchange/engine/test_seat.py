@@ -2,7 +2,7 @@
 valves, seat variants.
 
 The two integrators run the same algorithm on the same contact kernels (exchange/contact/laws.py,
-exchange/compiled_body.py); they differ only by round-off (sums in another order), which moves step sizes where
+exchange/engine/body.py); they differ only by round-off (sums in another order), which moves step sizes where
 the error estimate is itself round-off (a constant-rate fill). So the events must be the same, in the same order,
 and the histories must agree to the solver's tolerance, converging together as rtol shrinks.
 """
