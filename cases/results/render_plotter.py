@@ -14,7 +14,7 @@ import numpy as np
 
 from cases.results.render_annotate import annotate
 from cases.results.render_style import (ACTIVE_NODE_RGB, BACKGROUND_RGB, BODY_OPACITY, BODY_RGB, CONTEXT_RGB, EDGE_RGB, LEGEND,
-                           VIEW_ANGLE, fraction_rgb, title)
+                                       SILHOUETTE_RGB, SILHOUETTE_WIDTH, VIEW_ANGLE, fraction_rgb, title)
 from cases.results.render_vtk import frame_arrays, leak_polydata, polygon_cells
 
 os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
@@ -114,6 +114,9 @@ class FramePlotter:
             mesh = _surface(vertices, faces)
             p.add_mesh(mesh, color=BODY_RGB, opacity=BODY_OPACITY, culling="back" if closed(faces) else None,
                        render=False)
+            width = SILHOUETTE_WIDTH * max(self.window_size[1] / 600.0, 0.5)
+            p.add_silhouette(mesh, color=SILHOUETTE_RGB, line_width=width, opacity=1.0, feature_angle=None,
+                             decimate=None)
             self._meshes["bodies"].append(mesh)
         self._topology = _topology(frame)
 
@@ -158,6 +161,7 @@ class FramePlotter:
         if not self.annotated:
             return view
         return annotate(view, title(frame), LEGEND, self.camera, VIEW_ANGLE, fraction_rgb)
+
 
     def close(self) -> None:
         self.plotter.close()
