@@ -21,6 +21,7 @@ import time as _time
 from dataclasses import dataclass
 
 import numpy as np
+from .lazy_scipy import solve_ivp
 
 from .jacobian import jacobian_option
 from .trajectory import Trajectory
@@ -34,14 +35,6 @@ MAX_EVENTS_AT_ONE_TIME = 20
 SWITCH_NEAR_ZERO_PER_RTOL = 100.0
 
 METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
-
-
-def solve_ivp(*args, **kwargs):
-    """scipy's ``solve_ivp``, imported on first use: ``scipy.integrate`` costs about half a second of CPU to import,
-    and the compiled DOP853 path never needs it."""
-    from scipy.integrate import solve_ivp as scipy_solve_ivp
-
-    return scipy_solve_ivp(*args, **kwargs)
 
 
 class SolverError(RuntimeError):

@@ -62,6 +62,26 @@ def edge_pixels(frame, camera, window_size) -> float:
     return float(edge / (2.0 * distance * np.tan(np.radians(VIEW_ANGLE) / 2.0)) * window_size[1])
 
 
+def _add_silhouette(plotter, mesh, width: float) -> None:
+    """The outline of ``mesh`` as the plotter's camera sees it (VTK's ``vtkPolyDataSilhouette``: edges between a
+    front and a back face, and boundary edges), opaque lines of ``width`` px in :data:`SILHOUETTE_RGB`. Built here
+    rather than with ``Plotter.add_silhouette``, which renders the whole scene once more when it adds the actor."""
+    import pyvista as pv
+    from vtkmodules.vtkFiltersHybrid import vtkPolyDataSilhouette
+
+    outline = vtkPolyDataSilhouette()
+    outline.SetInputData(mesh)
+    outline.SetCamera(plotter.renderer.camera)
+    outline.SetEnableFeatureAngle(False)
+    mapper = pv.DataSetMapper()
+    mapper.SetInputConnection(outline.GetOutputPort())
+    mapper.ScalarVisibilityOff()
+    actor = pv.Actor(mapper=mapper)
+    actor.prop.color = SILHOUETTE_RGB
+    actor.prop.line_width = width
+    plotter.add_actor(actor, render=False, reset_camera=False)
+
+
 def _topology(frame) -> tuple:
     return (np.shape(frame.leak_faces), tuple(np.shape(f) for _, f in frame.bodies),
             tuple(np.shape(f) for _, f in frame.context))
@@ -114,9 +134,7 @@ class FramePlotter:
             mesh = _surface(vertices, faces)
             p.add_mesh(mesh, color=BODY_RGB, opacity=BODY_OPACITY, culling="back" if closed(faces) else None,
                        render=False)
-            width = SILHOUETTE_WIDTH * max(self.window_size[1] / 600.0, 0.5)
-            p.add_silhouette(mesh, color=SILHOUETTE_RGB, line_width=width, opacity=1.0, feature_angle=None,
-                             decimate=None)
+            _add_silhouette(p, mesh, SILHOUETTE_WIDTH * max(self.window_size[1] / 600.0, 0.5))
             self._meshes["bodies"].append(mesh)
         self._topology = _topology(frame)
 
