@@ -64,3 +64,10 @@ def test_scenes_doc_names_the_main_job_and_the_default_solver():
     assert mentions and all(main in scenes[m:m + 80] for m in mentions), main
     integration = scenes.split("## Integration")[1].split("\n## ")[0]
     assert "DOP853" in integration and "compiled" in integration.split("solve_ivp")[0]
+
+
+def test_getting_started_installs_with_the_readme_command():
+    first = re.compile(r"```bash\n(.*?)```", re.S)
+    readme = first.search((ROOT / "README.md").read_text(encoding="utf-8")).group(1).strip()
+    guide = first.search((ROOT / "docs" / "getting-started.md").read_text(encoding="utf-8")).group(1).strip()
+    assert guide == readme
