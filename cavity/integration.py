@@ -21,7 +21,7 @@ import time as _time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from .lazy_scipy import solve_ivp
 
 from .jacobian import jacobian_option
 from .trajectory import Trajectory

@@ -17,7 +17,10 @@ from enum import IntEnum
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _d
+
+from .dop853_tableau import tableau
+
+_d = tableau()
 
 __all__ = ["Status", "A", "B", "C", "E3", "E5", "D", "A_EXTRA", "C_EXTRA", "N_STAGES", "DenseSteps", "error_norm",
            "initial_h0", "initial_step", "dense_F", "dense_eval", "step_factor", "SAFETY", "MIN_FACTOR",

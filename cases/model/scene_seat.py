@@ -4,7 +4,6 @@ the seat's switches and what they do :mod:`exchange.engine.body`)."""
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 from exchange.readback.values import body_values
 
@@ -44,6 +43,8 @@ def rest_position(net, y) -> float:
         if step > c.size:
             raise ValueError(f"contact {c.name!r}: the seat cannot carry the forces pressing {c.body!r} into it "
                              f"within an overclosure of {c.size:.3g} m (stiffness too low?)")
+    from scipy.optimize import brentq
+
     s0 = float(brentq(force, -sigma * inside, -sigma * step, xtol=1e-15 * c.size, rtol=4 * np.finfo(float).eps))
     force(s0)  # leaves the body state at s0
     return s0

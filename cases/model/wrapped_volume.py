@@ -11,7 +11,6 @@ import hashlib
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from cavity.volume import mesh_volume, mesh_volumes
 
@@ -19,6 +18,13 @@ __all__ = ["Wrapper", "WrappedVolume", "wrapped_volume", "GRID_POINTS"]
 
 #: Samples of θ used to fit the volume spline.
 GRID_POINTS = 401
+
+
+def _spline(grid, vols):
+    """scipy's not-a-knot ``CubicSpline`` of the volumes (imported here: scipy.interpolate is slow to import)."""
+    from scipy.interpolate import CubicSpline
+
+    return CubicSpline(grid, vols)
 
 
 def behind_closest_face(points, closest, normals) -> np.ndarray:
@@ -116,7 +122,7 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
             _RIGID_VOLUMES[key] = vols
             while len(_RIGID_VOLUMES) > 8:
                 del _RIGID_VOLUMES[next(iter(_RIGID_VOLUMES))]
-        return WrappedVolume(CubicSpline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
+        return WrappedVolume(_spline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
     vols = []
     for th, x in zip(grid, (wrapper.place(x0, th) for th in grid)):
         moved = np.flatnonzero(np.any(x != x0, axis=1))
@@ -126,7 +132,7 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
         touched = np.unique(node_faces[moved])
         touched = touched[touched >= 0]
         vols.append(v0 + mesh_volume(x, faces[touched]) - mesh_volume(x0, faces[touched]))
-    return WrappedVolume(CubicSpline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
+    return WrappedVolume(_spline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
 
 
 #: Sampled volumes of one rigid body's placements, keyed by the digest of everything they depend on (the mesh,

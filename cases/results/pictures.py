@@ -42,7 +42,17 @@ def frame_at(results, j: int, t: float, *, whole_scene: bool = False):
     p = net.states(t, results.trajectory(t))[net.exchanges[j].upstream].pressure
     cpress, status = contact_arrays(results, j, t)
     return Frame(t, p, state.surface.vertices, state.surface.faces, state.face_fraction, state.active,
-                 state.distances, bodies, context, cpress=cpress, contact_status=status)
+                 state.distances, bodies, context, cpress=cpress, contact_status=status, label=frame_label(model, j))
+
+
+def frame_label(model, j: int) -> str:
+    """The first title line of exchange j's pictures: ``"<scene>: exchange <name>, p of cavity <name>"`` (the scene
+    file's name, else its title)."""
+    scene, net = model.scene, model.network
+    up = net.exchanges[j].upstream
+    name = Path(scene._path).stem if getattr(scene, "_path", "") else (scene.title or "scene")
+    cavity = net.cavities[up].name if up is not None and 0 <= up < len(net.cavities) else "ambient"
+    return f"{name}: exchange {net.exchanges[j].name}, p of cavity {cavity}"
 
 
 def frames_for(results, j: int, times) -> list:

@@ -7,7 +7,6 @@ import math
 import warnings
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from cavity.caution import VentsimWarning
 from cavity.integration import Trajectory
@@ -83,6 +82,8 @@ def refine_peak(ts: np.ndarray, ps: np.ndarray, pressure) -> tuple[float, float]
         if not pressure(ts[k] + (EDGE_PROBE if k == 0 else -EDGE_PROBE) * (hi - lo)) > best[0]:
             return best
     if hi > lo:
+        from scipy.optimize import minimize_scalar
+
         res = minimize_scalar(lambda t: -pressure(t), bounds=(lo, hi), method="bounded",
                               options={"xatol": 1e-14 * max(1.0, hi)})
         if -res.fun > best[0]:

@@ -7,10 +7,12 @@ What is drawn (see ``docs/rendering.md``)
   half blocked :data:`HALF_BLOCKED_RGB` (pale yellow), fully blocked :data:`BLOCKED_RGB` (red); face
   edges in dark grey;
 - active blockage nodes as black dots;
-- blocking bodies translucent grey (:data:`BODY_OPACITY`, front faces only, so one layer is blended);
+- blocking bodies translucent green (:data:`BODY_OPACITY`, front faces only, so one layer is blended) with their
+  silhouette as seen from the camera drawn opaque in dark green (:data:`SILHOUETTE_RGB`);
 - optional context surfaces (e.g. the cavity) light grey, opaque or translucent;
-- annotated (``scalar_bar=True``, as the pictures of a run are): the title ``t = 12.50 ms, p = 135.2 kPa``, a
-  one-line legend, a scale bar and, in a strip to the right of the view, the colour bar of ``A_eb / A_e [-]``
+- annotated (``scalar_bar=True``, as the pictures of a run are): the title (the frame's ``label``: scene,
+  exchange and cavity; then ``t = 12.50 ms, p = 135.2 kPa``), orientation axes, a one-line legend, a scale bar
+  and, in a strip to the right of the view, the colour bar of ``A_eb / A_e [-]``
   (:mod:`cases.results.render_annotate`).
 
 Nothing but the faces is red in the 3-D view (:func:`cases.results.render_annotate.view_part` of an annotated picture), so
@@ -34,11 +36,11 @@ import numpy as np
 
 from cases.results.output import atomic_path
 from cases.results.render_plotter import FramePlotter
-from cases.results.render_style import (BLOCKED_RGB, BLOCKED_TOLERANCE, HALF_BLOCKED_RGB, UNBLOCKED_RGB, VIEW_ANGLE,
-                                fraction_rgb, title)
+from cases.results.render_style import (BLOCKED_RGB, BLOCKED_TOLERANCE, HALF_BLOCKED_RGB, SILHOUETTE_RGB, UNBLOCKED_RGB,
+                                       VIEW_ANGLE, fraction_rgb, title)
 from cases.results.render_vtk import polygon_cells, write_vtk_series
 
-__all__ = ["BLOCKED_RGB", "HALF_BLOCKED_RGB", "UNBLOCKED_RGB", "Frame", "blocked_colour_fraction", "camera_for",
+__all__ = ["BLOCKED_RGB", "HALF_BLOCKED_RGB", "UNBLOCKED_RGB", "SILHOUETTE_RGB", "Frame", "blocked_colour_fraction", "camera_for",
            "fraction_rgb", "frame_image", "render_animation", "render_frame", "save_png", "title", "write_vtk_series"]
 
 @dataclass(frozen=True)
@@ -68,6 +70,8 @@ class Frame:
         Contact pressure per node [Pa] when the surface is a contact seat (written to the VTK series).
     contact_status : (n,) uint8 or None
         0 open, 1 closed, 2 VD (viscous damping within the damping clearance), with ``cpress``.
+    label : str
+        First line of an annotated picture's title (e.g. ``"airbag_impactor: exchange vent, cavity cushion"``).
     """
 
     time: float
@@ -81,6 +85,7 @@ class Frame:
     context: tuple = ()
     cpress: object = None
     contact_status: object = None
+    label: str = ""
 
     def __post_init__(self):
         n_faces, n_nodes = len(self.leak_faces), len(self.leak_vertices)

@@ -1,8 +1,10 @@
 """What a picture of a run says besides the 3-D view: time and pressure, a colour bar with its unit, a scale bar.
 
 The annotations are drawn with Pillow on the rendered view (no VTK text or scalar-bar actors, which would cost a
-render each): the title ``t = 12.50 ms, p = 135.2 kPa`` at the top, a one-line legend at the bottom left, a scale
-bar (its length in mm is true at the camera's focal point) at the bottom right, and to the right of the view a
+render each): the title at the top (scene, exchange and cavity on a first line when given, then
+``t = 12.50 ms, p = 135.2 kPa``), the orientation axes (x, y, z arrows as the camera sees them) at the top left, a
+one-line legend at the bottom left, a scale bar (its length in mm is true at the camera's focal point) at the
+bottom right, and to the right of the view a
 strip of :data:`COLOUR_BAR_WIDTH` pixels holding the colour bar of the blocked fraction ``A_eb / A_e [-]``
 (red 1 at the top, blue 0 at the bottom).
 """
@@ -13,7 +15,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["COLOUR_BAR_WIDTH", "annotate", "scale_bar_length", "view_part", "pixels_per_metre"]
+__all__ = ["COLOUR_BAR_WIDTH", "annotate", "scale_bar_length", "view_part", "pixels_per_metre", "screen_axes"]
 
 COLOUR_BAR_WIDTH = 130
 """Width [px] of the strip to the right of the view that holds the colour bar."""
@@ -34,6 +36,39 @@ def pixels_per_metre(camera, view_angle: float, height: int) -> float:
     """
     distance = float(np.linalg.norm(np.subtract(camera[0], camera[1])))
     return height / (2.0 * distance * math.tan(math.radians(view_angle) / 2.0))
+
+
+def screen_axes(camera) -> np.ndarray:
+    """(3, 2) screen directions (right, up; unit length for an axis across the view) of the world x, y, z axes as
+    seen by ``camera`` (a pyvista camera position ``[position, focal point, view up]``).
+
+    >>> screen_axes([(0, 0, 1.0), (0, 0, 0), (0, 1, 0)]).round(6).tolist()  # looking down -z, y up
+    [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]
+    """
+    position, focal, up = (np.asarray(v, dtype=np.float64) for v in camera)
+    forward = (focal - position) / np.linalg.norm(focal - position)
+    right = np.cross(forward, up)
+    right /= np.linalg.norm(right)
+    return np.column_stack([right, np.cross(right, forward)])
+
+
+def _axes(draw, camera, origin, length: float, font) -> None:
+    """The orientation axes: an arrow per world axis from ``origin`` [px], its end labelled x, y or z."""
+    from cases.results.render_style import AXIS_RGB
+
+    x0, y0 = origin
+    directions = screen_axes(camera)
+    for k in np.argsort([-d @ d for d in directions]):  # the shortest (pointing at the viewer) drawn last
+        dx, dy = directions[k] * length
+        end = (x0 + dx, y0 - dy)
+        draw.line([origin, end], fill=AXIS_RGB[k], width=3)
+        size = math.hypot(dx, dy)
+        if size > 4.0:
+            ux, uy = dx / size, -dy / size
+            draw.polygon([end, (end[0] - 7 * ux - 4 * uy, end[1] - 7 * uy + 4 * ux),
+                          (end[0] - 7 * ux + 4 * uy, end[1] - 7 * uy - 4 * ux)], fill=AXIS_RGB[k])
+        label = (x0 + dx * (1.0 + 9.0 / max(size, 1e-9)), y0 - dy * (1.0 + 9.0 / max(size, 1e-9)))
+        draw.text(label, "xyz"[k], fill=AXIS_RGB[k], font=font, anchor="mm")
 
 
 def scale_bar_length(metres_per_pixel: float, target_pixels: float = 120.0) -> float:
@@ -103,7 +138,12 @@ def annotate(view: np.ndarray, title: str, legend: str, camera, view_angle: floa
     draw = ImageDraw.Draw(canvas)
     scale = min(width / 800.0, height / 600.0)
     big, small = _font(max(round(20 * scale), 9)), _font(max(round(12 * scale), 8))
-    draw.text((width / 2, 8), title, fill=(0, 0, 0), font=big, anchor="mt")
+    lines = title.split("\n")
+    for k, line in enumerate(lines):
+        draw.text((width / 2, 8 + k * round(24 * scale)), line, fill=(0, 0, 0),
+                  font=big if k == len(lines) - 1 else _font(max(round(15 * scale), 8)), anchor="mt")
+    top = 8 + len(lines) * round(24 * scale)
+    _axes(draw, camera, (round(45 * scale), top + round(45 * scale)), 32 * scale, small)
     draw.text((8, height - 8), legend, fill=(0, 0, 0), font=small, anchor="ls")
     _scale_bar(draw, width, height - round(14 * scale), pixels_per_metre(camera, view_angle, height), small)
     _colour_bar(canvas, draw, width, height, colours, small)

@@ -14,7 +14,7 @@ import numpy as np
 
 from cases.results.render_annotate import annotate
 from cases.results.render_style import (ACTIVE_NODE_RGB, BACKGROUND_RGB, BODY_OPACITY, BODY_RGB, CONTEXT_RGB, EDGE_RGB, LEGEND,
-                           VIEW_ANGLE, fraction_rgb, title)
+                                       SILHOUETTE_RGB, SILHOUETTE_WIDTH, VIEW_ANGLE, fraction_rgb, title)
 from cases.results.render_vtk import frame_arrays, leak_polydata, polygon_cells
 
 os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
@@ -60,6 +60,26 @@ def edge_pixels(frame, camera, window_size) -> float:
     edge = np.median(np.linalg.norm(vertices[faces[:, 1]] - vertices[faces[:, 0]], axis=1))
     distance = np.linalg.norm(np.subtract(camera[0], camera[1]))
     return float(edge / (2.0 * distance * np.tan(np.radians(VIEW_ANGLE) / 2.0)) * window_size[1])
+
+
+def _add_silhouette(plotter, mesh, width: float) -> None:
+    """The outline of ``mesh`` as the plotter's camera sees it (VTK's ``vtkPolyDataSilhouette``: edges between a
+    front and a back face, and boundary edges), opaque lines of ``width`` px in :data:`SILHOUETTE_RGB`. Built here
+    rather than with ``Plotter.add_silhouette``, which renders the whole scene once more when it adds the actor."""
+    import pyvista as pv
+    from vtkmodules.vtkFiltersHybrid import vtkPolyDataSilhouette
+
+    outline = vtkPolyDataSilhouette()
+    outline.SetInputData(mesh)
+    outline.SetCamera(plotter.renderer.camera)
+    outline.SetEnableFeatureAngle(False)
+    mapper = pv.DataSetMapper()
+    mapper.SetInputConnection(outline.GetOutputPort())
+    mapper.ScalarVisibilityOff()
+    actor = pv.Actor(mapper=mapper)
+    actor.prop.color = SILHOUETTE_RGB
+    actor.prop.line_width = width
+    plotter.add_actor(actor, render=False, reset_camera=False)
 
 
 def _topology(frame) -> tuple:
@@ -114,6 +134,7 @@ class FramePlotter:
             mesh = _surface(vertices, faces)
             p.add_mesh(mesh, color=BODY_RGB, opacity=BODY_OPACITY, culling="back" if closed(faces) else None,
                        render=False)
+            _add_silhouette(p, mesh, SILHOUETTE_WIDTH * max(self.window_size[1] / 600.0, 0.5))
             self._meshes["bodies"].append(mesh)
         self._topology = _topology(frame)
 
@@ -158,6 +179,7 @@ class FramePlotter:
         if not self.annotated:
             return view
         return annotate(view, title(frame), LEGEND, self.camera, VIEW_ANGLE, fraction_rgb)
+
 
     def close(self) -> None:
         self.plotter.close()

@@ -22,7 +22,7 @@ from cases.results.output import atomic_path
 from cases.sweep.folder import RESULTS_CSV, RESULTS_PARQUET, ROW
 
 __all__ = ["flat", "arrow_column", "write_table", "ResultsTable", "load_records", "Progress", "responses",
-           "plot_sweep"]
+           "plot_sweep", "sweep_figure", "sweep_title"]
 
 
 # ------------------------------------------------------------------------------------------ records and tables
@@ -180,20 +180,32 @@ def _panel(ax, x, y, labels) -> None:
     ax.grid(True, alpha=0.3)
 
 
-def plot_sweep(path: Path, rows: list, keys, title: str = "") -> Path | None:
-    """Write the response-against-key grid of ``rows`` (flat result rows) to ``path``; None if nothing to draw."""
+def sweep_title(title: str, n_ok: int, width_inches: float, fontsize: float = 10.0) -> str:
+    """The figure's title: ``title`` wrapped to lines that fit ``width_inches`` (a character of the default sans font
+    is at most ~0.6 em wide), then the number of variants.
+
+    >>> sweep_title("peak pressure of the cushion against the vent's discharge coefficient", 12, 2.0).splitlines()
+    ['peak pressure of the', 'cushion against the', "vent's discharge", 'coefficient', '12 variants']
+    """
+    import textwrap
+
+    columns = max(int(width_inches * 72.0 / (0.6 * fontsize)), 10)
+    lines = textwrap.wrap(title, columns, break_long_words=True) if title else []
+    return "\n".join(lines + [f"{n_ok} variants"])
+
+
+def sweep_figure(rows: list, keys, title: str = ""):
+    """The response-against-key grid of ``rows`` (flat result rows) as a matplotlib Figure; None if nothing to draw.
+    Constrained layout keeps the (wrapped) title, labels and ticks inside the figure."""
     ok = [r for r in rows if r.get("status") == "ok"]
     resp = responses(ok)[:MAX_PANELS]
     keys = list(keys)[:MAX_PANELS]
     if not ok or not resp or not keys:
         return None
-    import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(len(resp), len(keys), figsize=(3.4 * len(keys) + 0.8, 2.5 * len(resp) + 0.8),
-                             squeeze=False, sharex="col", sharey="row")
+    fig = Figure(figsize=(3.4 * len(keys) + 0.8, 2.5 * len(resp) + 0.8), layout="constrained")
+    axes = fig.subplots(len(resp), len(keys), squeeze=False, sharex="col", sharey="row")
     for j, key in enumerate(keys):
         x, labels = _positions([r.get(key) for r in ok])
         for i, col in enumerate(resp):
@@ -203,9 +215,15 @@ def plot_sweep(path: Path, rows: list, keys, title: str = "") -> Path | None:
             if j == 0:
                 axes[i, j].set_ylabel(f"{col[:-len(suffix) - 1]} {label}", fontsize=9)
         axes[-1, j].set_xlabel(key, fontsize=9)
-    fig.suptitle(f"{title}\n{len(ok)} variants" if title else f"{len(ok)} variants", fontsize=10)
-    fig.tight_layout()
+    fig.suptitle(sweep_title(title, len(ok), fig.get_figwidth() - 0.3), fontsize=10)
+    return fig
+
+
+def plot_sweep(path: Path, rows: list, keys, title: str = "") -> Path | None:
+    """Write :func:`sweep_figure` of ``rows`` to the PNG ``path``; None if nothing to draw."""
+    fig = sweep_figure(rows, keys, title)
+    if fig is None:
+        return None
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=100, format="png")
-    plt.close(fig)
     return Path(path)
