@@ -1,0 +1,131 @@
+"""The seal as a scene exchange on the engine (law = "seal"): the flange scene's leak onset against the static
+formula, its mass balance, the rtol ladder, and the ring's closure under a flange loaded by a constant force
+against the closed-form motion (free flight, then a harmonic oscillator on the penalty gasket)."""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from cases.model.build import build_model
+from cases.run.library import HERE
+from cases.run.runner import run
+from cases.scene.errors import SceneError
+from cases.scene.files import load_scene, scene_from_dict
+from exchange.seal.flange import leak_onset_pressure
+from exchange.seal.gap_laws import ExponentialGap
+from exchange.seal.meshes import annulus_mesh
+
+FLANGE = HERE / "seal_flange.toml"
+
+
+@pytest.fixture(scope="module")
+def flange_run():
+    model = build_model(load_scene(FLANGE))
+    return model, run(model)
+
+
+def _event_times(results, label):
+    return [t for t, name in results.trajectory.events if name == label]
+
+
+def test_flange_leak_onset_is_the_static_formula(flange_run):
+    """The ring re-opens (event seal:kink0) where the flange's displacement reaches the closure displacement
+    s* = −p_c/k (to 1e-12 of the seat size), at the pressure the static balance of the preload, the gasket's contact
+    pressure p_c and the vessel's pressure gives, p_onset = p_a + (F_b − p_c·A_g)/A_p, corrected by the flange's
+    inertia and the contact damping at that instant (to 1e-9); those two terms are < 3e-4 of p_onset."""
+    model, results = flange_run
+    net = model.network
+    t = _event_times(results, "seal:kink0")[0]
+    y = results.trajectory(t)
+    k = net.body_offset
+    law = net.exchanges[0].law
+    contact, body = net.contact, model.scene.body[0]
+    assert abs(y[k] - law.curve.closure) <= 1e-12 * contact.size
+    p = net.states(t, y)[0].pressure
+    gap = ExponentialGap(10e-6, 1e6, 0.5e-6)
+    p_c, a_g = gap.closing_pressure(), contact.seat_area
+    assert law.curve.closure == pytest.approx(-p_c / 5e10, rel=1e-12)
+    onset = leak_onset_pressure(body.spring_preload, a_g, body.pressure_area, p_c, 101325.0)
+    accel = net.body_forces(t, y)[1]
+    dynamic = body.mass * accel - (contact.force(y[k], y[k + 1]) - p_c * a_g)
+    assert p == pytest.approx(onset + dynamic / body.pressure_area, rel=1e-9)
+    assert abs(p / onset - 1.0) < 3e-4
+    assert results.column("seal.mass_flow")[results.history[:, 0] < t].max() == 0.0
+
+
+def test_flange_closes_again_when_vented_and_balances_mass(flange_run):
+    model, results = flange_run
+    opened, closed = _event_times(results, "seal:kink0")
+    assert opened < 1.0 < 1.2 < closed  # re-opens while filled, closes again while vented
+    assert results.summary["mass balance"]["vessel"]["relative imbalance [-]"] <= 1e-12
+    flow = results.column("seal.mass_flow")
+    assert flow[results.history[:, 0] > closed].max() == 0.0  # closed all around: exactly no leak
+    fraction = results.column("seal.contact_fraction")
+    assert fraction.min() == 0.0 and fraction.max() == 1.0  # it lifted off the gasket and sat back
+    assert results.summary["modelled"]["seals"]["seal"]["gap law"].startswith("exponential")
+
+
+def test_flange_rtol_ladder_is_monotone():
+    """The onset and closure times and the pressure history converge monotonically down the rtol ladder."""
+    model = build_model(load_scene(FLANGE))
+    model = replace(model, scene=model.scene)
+    runs = [run(replace(model, options=replace(model.options, rtol=r, atol=model.options.atol * r / 1e-8)))
+            for r in (1e-5, 1e-7, 1e-9, 1e-12)]
+    times = [np.array(_event_times(r, "seal:kink0")) for r in runs]
+    p = [r.column("vessel.pressure") for r in runs]
+    event_errors = [float(np.max(np.abs(t - times[-1]))) for t in times[:-1]]
+    pressure_errors = [float(np.max(np.abs(q - p[-1])) / p[-1].max()) for q in p[:-1]]
+    assert all(b < a for a, b in zip(event_errors, event_errors[1:])), event_errors
+    assert all(b < a for a, b in zip(pressure_errors, pressure_errors[1:])), pressure_errors
+
+
+def _closing_scene(tmp_path, gap, d, force, mass, stiffness):
+    v, f = annulus_mesh(0.04, 0.05, 2, 48)
+    lines = ["v %r %r %r" % tuple(map(float, x)) for x in v] + ["f %d %d %d %d" % tuple(q + 1) for q in f]
+    (tmp_path / "ring.obj").write_text("\n".join(lines) + "\n")
+    return scene_from_dict({
+        "time": {"end": 0.01, "output_interval": 1e-4}, "solver": {"rtol": 1e-12},
+        "ambient": {"pressure": 101325.0, "temperature": 293.15, "gas": {"N2": 1.0}},
+        "body": [{"name": "flange", "box": [0.0, 0.0, d + 0.005, 0.12, 0.12, 0.01], "axis": [0.0, 0.0, 1.0],
+                  "mass": mass, "spring_preload": force}],
+        "cavity": [{"name": "vessel", "pressure": 3e5, "temperature": 293.15, "gas": {"N2": 1.0}, "volume": 1e-3,
+                    "energy": "isothermal"}],
+        "exchange": [{"name": "seal", "from": "vessel", "law": "seal", "leakage_surface": "ring.obj",
+                      "gap_law": "exponential", "gap_h0": gap.h0, "gap_p0": gap.p0, "gap_percolation": gap.u_c,
+                      "seal_viscosity": 1.76e-5, "seal_displacement_min": -2e-4, "seal_displacement_max": 1e-4}],
+        "contact": [{"name": "gasket", "body": "flange", "seat": "seal", "pressure_overclosure": "linear",
+                     "stiffness": stiffness}]}, tmp_path / "closing.toml")
+
+
+def test_ring_closure_time_is_the_closed_form_to_1e_10(tmp_path):
+    """A flange pushed by a constant force F from a clearance d: free flight s = −F t²/(2m) until touch, then
+    m x'' = F − K x (x the overclosure, K = k·A_g). The ring closes where every node carries p_c, x* = p_c/k, at
+    τ* = (φ + asin((x* − a)/R))/ω after touch (a = F/K, b = v1/ω, R = √(a² + b²), φ = atan2(a, b))."""
+    gap, d, force, mass, k = ExponentialGap(10e-6, 1e6, 0.5e-6), 2e-6, 1.0e4, 2.0, 5e10
+    model = build_model(_closing_scene(tmp_path, gap, d, force, mass, k))
+    results = run(model)
+    t_event = _event_times(results, "seal:kink0")[0]  # undamped: it re-opens and closes again as it rings
+    a_g = model.network.contact.seat_area
+    K, t1 = k * a_g, math.sqrt(2.0 * d * mass / force)
+    omega, v1 = math.sqrt(K / mass), force * t1 / mass
+    a, b = force / K, v1 / omega
+    x_star = gap.closing_pressure() / k
+    tau = (math.atan2(a, b) + math.asin((x_star - a) / math.hypot(a, b))) / omega
+    assert abs(t_event - (t1 + tau)) <= 1e-10 * model.scene.time.end
+    flow = results.column("seal.mass_flow")
+    t = results.history[:, 0]
+    assert flow[0] > 0.0 and flow[(t > t_event) & (t < t_event + 1e-4)].max() == 0.0
+
+
+def test_a_seal_without_its_flange_is_one_clear_error(tmp_path):
+    scene = _closing_scene(tmp_path, ExponentialGap(10e-6, 1e6, 0.5e-6), 2e-6, 1e4, 2.0, 5e10)
+    with pytest.raises(SceneError, match="needs its flange"):
+        pushed = replace(scene.body[0], pressure_area=1e-3, pressure_cavity="vessel")
+        build_model(replace(scene, contact=(), body=(pushed,)))
+    hard = replace(scene, contact=(replace(scene.contact[0], pressure_overclosure="hard", stiffness=0.0),))
+    with pytest.raises(SceneError, match="not 'hard'"):
+        build_model(hard)
