@@ -31,9 +31,9 @@ def seal_columns(model, columns, history) -> list:
         mins, means, fractions, conductance = (np.empty(len(s)) for _ in range(4))
         areas = seal.film.areas
         for r, q in enumerate(s):
-            h = seal.path.heights(q)
+            h, touching = seal.path.state(q)
             mins[r], means[r] = h.min(), float(h @ areas / areas.sum())
-            fractions[r] = contact_fraction(seal.path.in_contact(q), areas)
+            fractions[r] = contact_fraction(touching, areas)
             conductance[r] = seal.law.conductance(q)[0]
         out += [(f"{seal.name}.min_gap [m]", mins), (f"{seal.name}.mean_gap [m]", means),
                 (f"{seal.name}.contact_fraction [-]", fractions), (f"{seal.name}.conductance [m^3]", conductance)]

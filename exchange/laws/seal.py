@@ -26,6 +26,7 @@ from numba import njit
 from exchange.engine.layout import LAW_LOAD, LAW_SIGNATURE, KinkVariable, StateColumn, TableColumn, side
 from exchange.engine.tables import table_value
 from exchange.seal.kernels import curve_conductance, seal_mass_flow
+from exchange.seal.spec import SealSetup
 
 from .spec import LawKey, LawSpec
 
@@ -33,24 +34,6 @@ __all__ = ["SealLaw", "SealSetup", "seal_kernel", "LAW", "GAP_LAWS", "VISCOSITY_
 
 GAP_LAWS = ("exponential", "persson", "table", "pvrc", "none")
 VISCOSITY_MODELS = ("sutherland", "coolprop")
-
-
-@dataclass(frozen=True)
-class SealSetup:
-    """What a scene says about a seal (its keys), before the seal surface and the flange are known."""
-
-    gap: object  # a gap law of exchange.seal.gap_laws / hysteresis
-    gap_name: str
-    pressurised_edge: str
-    outer_edge: str
-    viscosity: float  # [Pa s], 0: from the model
-    viscosity_model: str
-    gas: str
-    slip: bool
-    s_min: float
-    s_max: float
-    loaded_to: float  # [m] nan: no earlier loading
-    rtol: float
 
 
 @dataclass(frozen=True, eq=False)

@@ -20,6 +20,7 @@ from exchange.seal.gap_laws import ExponentialGap, NoGap, PerssonGap, TableGap
 from exchange.seal.hysteresis import PVRCGap
 from exchange.seal.load_paths import DisplacementPath
 from exchange.seal.reynolds import film_conductance
+from exchange.seal.spec import SealSetup
 from exchange.seal.viscosity import SUTHERLAND, coolprop_viscosity, sutherland_viscosity
 
 __all__ = ["seal_setup", "gap_law_of", "viscosity_table", "seal_law", "piecewise_curve", "TEMPERATURES"]
@@ -47,8 +48,6 @@ def gap_law_of(name, v, read_table):
 
 def seal_setup(v, read_table):
     """The :class:`exchange.laws.seal.SealSetup` of a seal exchange's values ``v`` (its law keys)."""
-    from exchange.laws.seal import SealSetup
-
     if not v["seal_displacement_max"] > v["seal_displacement_min"]:
         raise ValueError(f"seal_displacement_max ({v['seal_displacement_max']!r} m) must exceed "
                          f"seal_displacement_min ({v['seal_displacement_min']!r} m)")

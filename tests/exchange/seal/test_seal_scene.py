@@ -129,3 +129,23 @@ def test_a_seal_without_its_flange_is_one_clear_error(tmp_path):
     hard = replace(scene, contact=(replace(scene.contact[0], pressure_overclosure="hard", stiffness=0.0),))
     with pytest.raises(SceneError, match="not 'hard'"):
         build_model(hard)
+
+
+def test_merged_seat_rows_give_the_same_force_and_the_path_state_its_parts():
+    """The engine's merged seat (nodes of equal clearance and side in one row) gives the seat force of every node
+    to round-off, with penalty contact and critical damping; a load path's state is its heights and contact."""
+    from cases.model.scene_lowering import merged_seat_rows
+    from exchange.contact.laws import seat_force
+    from exchange.seal.load_paths import DisplacementPath
+
+    rng = np.random.default_rng(3)
+    table = np.c_[rng.choice([0.0, 1e-6, 2e-6], 400), np.ones(400), rng.uniform(1e-6, 2e-6, 400), np.ones(400)]
+    law = np.array([1.0, 5e10, 0.0, 3.0, 0.0, 0.0, 0.0, 0.5, 2.0, table[:, 2].sum(), 0.05])  # critical fraction 0.5
+    merged = merged_seat_rows(table)
+    assert merged.shape == (3, 4) and merged[:, 2].sum() == pytest.approx(table[:, 2].sum(), rel=1e-15)
+    for s, v in ((-3e-6, 0.01), (-1.5e-6, -0.02), (0.5e-6, 0.0)):
+        assert seat_force(s, v, merged, law) == pytest.approx(seat_force(s, v, table, law), rel=1e-13, abs=1e-12)
+    path = DisplacementPath(table, law, ExponentialGap(10e-6, 1e6, 0.5e-6))
+    for s in (-2e-4, -1.5e-6, 0.0, 3e-6):
+        h, touching = path.state(s)
+        assert np.array_equal(h, path.heights(s)) and np.array_equal(touching, path.in_contact(s))
