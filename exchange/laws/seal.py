@@ -143,12 +143,12 @@ def _build(name, values, read_table):
 
 
 KEYS = (
+    LawKey("gap_law", "seal: the channel height under contact pressure p", default="exponential",
+           choices=GAP_LAWS),
     LawKey("seal_pressurised_edge", "seal: the edge at the upstream pressure, 'inner' or 'outer' (the boundary "
            "loops of a ring) or a CSV file of node indices of the seal surface", default="inner"),
     LawKey("seal_outer_edge", "seal: the edge at the downstream pressure ('inner', 'outer' or a CSV of node "
            "indices)", default="outer"),
-    LawKey("gap_law", "seal: the channel height under contact pressure p", default="exponential",
-           choices=GAP_LAWS),
     LawKey("gap_h0", "seal, exponential: h = h0·exp(−p/p0) − u_c", "m", default=0.0, check="nonnegative"),
     LawKey("gap_p0", "seal, exponential: pressure scale p0", "Pa", default=0.0, check="nonnegative"),
     LawKey("gap_u0", "seal, persson: u = u0·ln(p*/p) − u_c", "m", default=0.0, check="nonnegative"),

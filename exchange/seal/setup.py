@@ -55,7 +55,13 @@ def seal_setup(v, read_table):
     if not v["seal_viscosity"] and model == "sutherland" and v["seal_gas"] not in SUTHERLAND:
         raise ValueError(f"Sutherland constants are known for {sorted(SUTHERLAND)}, not {v['seal_gas']!r}: give "
                          "seal_viscosity_model = 'coolprop' or seal_viscosity [Pa s]")
-    return SealSetup(gap_law_of(v["gap_law"], v, read_table), v["gap_law"], v["seal_pressurised_edge"],
+    try:
+        gap = gap_law_of(v["gap_law"], v, read_table)
+    except ValueError as exc:
+        keys = {"exponential": "gap_h0, gap_p0, gap_percolation", "persson": "gap_u0, gap_p_star, gap_percolation, "
+                "gap_max", "table": "gap_table", "pvrc": "pvrc_gb, pvrc_a, pvrc_gs, pvrc_h1, gap_max"}
+        raise ValueError(f"gap_law = {v['gap_law']!r}: {exc} (its keys: {keys.get(v['gap_law'], '-')})") from None
+    return SealSetup(gap, v["gap_law"], v["seal_pressurised_edge"],
                      v["seal_outer_edge"], v["seal_viscosity"], model, v["seal_gas"], bool(v["seal_slip"]),
                      v["seal_displacement_min"], v["seal_displacement_max"], v["seal_loaded_to"], v["seal_rtol"])
 

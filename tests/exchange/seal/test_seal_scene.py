@@ -129,6 +129,9 @@ def test_a_seal_without_its_flange_is_one_clear_error(tmp_path):
     hard = replace(scene, contact=(replace(scene.contact[0], pressure_overclosure="hard", stiffness=0.0),))
     with pytest.raises(SceneError, match="not 'hard'"):
         build_model(hard)
+    no_h0 = replace(scene, exchange=(replace(scene.exchange[0], gap_h0=0.0),))
+    with pytest.raises(SceneError, match=r"exchange\[0\]\.gap_law: gap_law = 'exponential': .*gap_h0"):
+        build_model(no_h0)
 
 
 def test_merged_seat_rows_give_the_same_force_and_the_path_state_its_parts():
@@ -149,3 +152,44 @@ def test_merged_seat_rows_give_the_same_force_and_the_path_state_its_parts():
     for s in (-2e-4, -1.5e-6, 0.0, 3e-6):
         h, touching = path.state(s)
         assert np.array_equal(h, path.heights(s)) and np.array_equal(touching, path.in_contact(s))
+
+
+def test_range_end_is_an_event_at_its_closed_form_time(tmp_path):
+    """The flange leaves the tabulated range's upper end s_max = −1 µm in free flight s = −F t²/(2m): the event
+    <seal>:kink2 fires at t = √(2 m |s_max| / F) to 1e-10 of the run."""
+    scene = _closing_scene(tmp_path, ExponentialGap(10e-6, 1e6, 0.5e-6), 2e-6, 1.0e4, 2.0, 5e10)
+    scene = replace(scene, exchange=(replace(scene.exchange[0], seal_displacement_max=-1e-6),))
+    results = run(build_model(scene))
+    t = _event_times(results, "seal:kink2")[0]
+    assert abs(t - math.sqrt(2.0 * 2.0 * 1e-6 / 1.0e4)) <= 1e-10 * scene.time.end
+
+
+@pytest.mark.parametrize("keys", [
+    {"gap_law": "persson", "gap_u0": 1e-6, "gap_p_star": 1e8, "gap_percolation": 1e-6, "gap_max": 20e-6},
+    {"gap_law": "table", "gap_table": "gap.csv"},
+    {"gap_law": "pvrc", "pvrc_gb": 6e6, "pvrc_a": 0.5, "pvrc_gs": 1e5, "pvrc_h1": 4e-6, "gap_max": 20e-6,
+     "seal_loaded_to": -1e-4, "seal_viscosity_model": "coolprop", "seal_slip": True},
+])
+def test_every_gap_law_builds_its_curve_in_a_scene(tmp_path, keys):
+    """Each gap law from scene keys: the law's K(s) is the film conductance of the load path's channel heights at
+    the flange's displacements (within the curve's tolerance), and the law's flow uses the named viscosity."""
+    from exchange.seal.reynolds import film_conductance
+    from exchange.seal.viscosity import coolprop_viscosity
+
+    (tmp_path / "gap.csv").write_text("pressure [Pa],gap [m]\n0,8e-6\n2e6,2e-6\n4e6,0\n")
+    scene = _closing_scene(tmp_path, ExponentialGap(10e-6, 1e6, 0.5e-6), 2e-6, 1.0e4, 2.0, 5e10)
+    data = {"gap_h0": 0.0, "gap_p0": 0.0, "gap_percolation": 0.0}
+    data.update(keys)
+    if keys.get("seal_viscosity_model") == "coolprop":
+        data["seal_viscosity"] = 0.0
+    seal = replace(scene.exchange[0], **data)
+    model = build_model(replace(scene, exchange=(seal,)))
+    (sm,) = model.geometry["seals"]
+    for s in (-6e-5, -2e-5, 1e-6):
+        k = sm.law.conductance(s)[0]
+        exact = film_conductance(sm.film, sm.path.heights(s))[0]
+        assert k == pytest.approx(exact, rel=2e-3, abs=1e-4 * max(sm.law.curve.values)), (s, keys["gap_law"])
+    assert model.modelled["seals"]["seal"]["gap law"].startswith(keys["gap_law"])
+    if "seal_viscosity_model" in keys:
+        assert sm.law.viscosity(300.0) == pytest.approx(coolprop_viscosity(300.0, "Nitrogen"), rel=1e-5)
+        assert sm.law.slip_values is not None and "unloading" in model.modelled["seals"]["seal"]["hysteresis"]
