@@ -193,3 +193,16 @@ def test_every_gap_law_builds_its_curve_in_a_scene(tmp_path, keys):
     if "seal_viscosity_model" in keys:
         assert sm.law.viscosity(300.0) == pytest.approx(coolprop_viscosity(300.0, "Nitrogen"), rel=1e-5)
         assert sm.law.slip_values is not None and "unloading" in model.modelled["seals"]["seal"]["hysteresis"]
+
+
+def test_flange_scene_is_the_same_on_scipys_integrator():
+    """scipy's solve_ivp stepping the same kernels: the same events (the seal's re-opening and closure among them)
+    at the same times, the same history."""
+    from tests.exchange.engine.test_seat import both, peak_relative
+
+    fast, slow = both(load_scene(FLANGE), rtol=1e-9)
+    ef, es = fast.summary["solver"]["event log"], slow.summary["solver"]["event log"]
+    assert [label for _, label in ef] == [label for _, label in es]
+    assert "seal:kink0" in [label for _, label in ef]
+    assert max(abs(a[0] - b[0]) for a, b in zip(ef, es)) <= 1e-8
+    assert peak_relative(fast, slow).max() <= 1e-5
