@@ -62,6 +62,10 @@ def finish_seals(scene, network, geo) -> None:
         if not e.leakage_surface:
             raise SceneError(scene.path, f"{where}.leakage_surface", f"seal {e.name!r} needs its seal surface: "
                                                                      "a mesh of the seal face")
+        if e.blocked_by or e.effective_area is not None:
+            raise SceneError(scene.path, f"{where}.{'blocked_by' if e.blocked_by else 'effective_area'}",
+                             f"seal {e.name!r} leaks through its film, not an area: remove the key (the flange's "
+                             "contact with the seal face closes it)")
         surface = geo["surfaces"][j][0]
         high = _edge(scene, where, "seal_pressurised_edge", e.seal_pressurised_edge)
         low = _edge(scene, where, "seal_outer_edge", e.seal_outer_edge)

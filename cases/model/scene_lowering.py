@@ -6,7 +6,7 @@ import numpy as np
 
 from exchange.engine.geometry import AreaSteps, BodyParameters, Geometry, Seat, VolumeSpline
 
-__all__ = ["lowered_geometry", "force_scale", "merged_seat_rows", "REDERIVE_SLACK"]
+__all__ = ["lowered_geometry", "force_scale", "REDERIVE_SLACK"]
 
 #: A dynamic body's area interval is re-derived from its displacement at a restart when the displacement lies
 #: outside the interval by more than this fraction of the track's range of θ.
@@ -56,34 +56,6 @@ def _seat(net) -> Seat | None:
     c = net.contact
     if c is None:
         return None
-    return Seat(c.law_vector, merged_seat_rows(c.table), np.asarray(c.thresholds(), dtype=float), bool(net.held), force_scale(net),
+    return Seat(c.law_vector, c.merged, np.asarray(c.thresholds(), dtype=float), bool(net.held), force_scale(net),
                 c.hard)
 
-
-def merged_seat_rows(table) -> np.ndarray:
-    """The seat's node table (n, 4) for the engine with the nodes of equal clearance, side and reach merged into one
-    row carrying their summed area, in order of first appearance; unreachable nodes dropped (one kept if all are).
-
-    Exact: a node's contact pressure depends on its clearance and speed only (the critical damping coefficient per
-    unit area too: nodal mass and stiffness both scale with the area), so the seat's force Σ σ·A·p is the same sum
-    grouped. A flat flange on a flat seat of any node count is then one row, and the right-hand side's cost does not
-    grow with the seat's mesh.
-
-    >>> merged_seat_rows(np.array([[0.0, 1.0, 0.5, 1.0], [1e-6, 1.0, 0.25, 1.0], [0.0, 1.0, 0.25, 1.0]])).tolist()
-    [[0.0, 1.0, 0.75, 1.0], [1e-06, 1.0, 0.25, 1.0]]
-    """
-    t = np.asarray(table, dtype=float)
-    keep = t[:, 3] != 0.0
-    if keep.any():
-        t = t[keep]
-    else:
-        t = t[:1]
-    keys = np.ascontiguousarray(t[:, [0, 1, 3]])
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    inverse = inverse.ravel()
-    order = np.argsort(first, kind="stable")
-    rank = np.empty_like(order)
-    rank[order] = np.arange(len(order))
-    out = t[first[order]].copy()
-    out[:, 2] = np.bincount(rank[inverse], weights=t[:, 2], minlength=len(order))
-    return np.ascontiguousarray(out)

@@ -117,7 +117,10 @@ def _lower(law, tables):
     curve = tables.add_arrays(c.knots, c.values)
     slopes = tables.add_arrays(c.knots, c.slopes)
     viscosity = tables.add_arrays(law.temperatures, law.viscosities)
-    slip = tables.add_arrays(c.knots, law.slip_values) if law.slip_values is not None else -1
+    slip = -1
+    if law.slip_values is not None:  # K_2 is continuous: one row per distinct knot (a join's twin dropped)
+        knots, first = np.unique(c.knots, return_index=True)
+        slip = tables.add_arrays(knots, np.asarray(law.slip_values)[first])
     return (float(law.load), float(c.closure), float(c.direction)), (curve, slopes, viscosity, slip)
 
 

@@ -137,7 +137,7 @@ def test_a_seal_without_its_flange_is_one_clear_error(tmp_path):
 def test_merged_seat_rows_give_the_same_force_and_the_path_state_its_parts():
     """The engine's merged seat (nodes of equal clearance and side in one row) gives the seat force of every node
     to round-off, with penalty contact and critical damping; a load path's state is its heights and contact."""
-    from cases.model.scene_lowering import merged_seat_rows
+    from cases.model.seat_contact import merged_seat_rows
     from exchange.contact.laws import seat_force
     from exchange.seal.load_paths import DisplacementPath
 
