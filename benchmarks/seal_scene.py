@@ -5,8 +5,8 @@ The scene is cases/seal_flange.toml with its gasket face replaced by a structure
 the node counts below, and ``time.end`` = 1 s (filled until the seal leaks and the flange lifts). The engine's
 kernels are compiled and cached first (one run of the library scene, not counted). Figures are CPU seconds of this
 process (``time.process_time``): "build" is ``build_model`` (mesh, seat rays, seal film and conductance curve),
-"run" the integration with its history, contact and seal outputs (of which the integration alone, its wall time
-on one core), "picture" the gap picture.
+"run" the integration with its history, contact and seal outputs (of which the integration alone), "picture"
+the gap picture.
 
 ``--figures DIR`` also runs the library scene and draws its history (``seal_flange.png``: vessel pressure with
 p_onset and p_lift, leak rate, minimum and mean channel height, contact-area fraction) and its gap picture at the
@@ -96,6 +96,17 @@ def measure(nodes: int, folder: Path, rtol: float) -> dict:
     scene = load_scene(ROOT / "cases" / "seal_flange.toml")
     seal = replace(scene.exchange[0], leakage_surface=str(ring_file(folder, nodes)), seal_rtol=rtol)
     scene = replace(scene, exchange=(seal,) + scene.exchange[1:], time=replace(scene.time, end=1.0))
+    import cases.run.runner as runner
+
+    spent = []
+
+    def timed(*args, **kwargs):  # the integration's own CPU
+        begin = time.process_time()
+        out = integrate(*args, **kwargs)
+        spent.append(time.process_time() - begin)
+        return out
+
+    integrate, runner.integrate = runner.integrate, timed
     start = time.process_time()
     model = build_model(scene)
     built = time.process_time()
@@ -103,10 +114,11 @@ def measure(nodes: int, folder: Path, rtol: float) -> dict:
     ran = time.process_time()
     write_seal_pictures(results, folder)
     drawn = time.process_time()
+    runner.integrate = integrate
     curve = seal_models(model)[0].law.curve
     events = [label for _, label in results.trajectory.events if label.startswith("seal:")]
     return {"nodes": nodes, "build": built - start, "run": ran - built, "picture": drawn - ran,
-            "integration": results.summary["solver"]["wall time [s]"],
+            "integration": spent[0],
             "solves": curve.solves, "knots": len(curve.knots), "steps": results.summary["solver"].get("steps", 0),
             "events": ",".join(events)}
 
@@ -118,7 +130,7 @@ def main() -> int:
     ap.add_argument("--figures", type=Path, default=None, help="draw the library scene's figures into this folder")
     args = ap.parse_args()
     run(build_model(load_scene(ROOT / "cases" / "seal_flange.toml")))  # compile and cache, not counted
-    print("| seal nodes | build [s CPU] | run 1 s [s CPU] | of which integration [s wall] | build + run | picture "
+    print("| seal nodes | build [s CPU] | run 1 s [s CPU] | of which integration [s CPU] | build + run | picture "
           "| Reynolds solves | knots | steps | seal events |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
