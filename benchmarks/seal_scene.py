@@ -12,7 +12,7 @@ the gap picture.
 p_onset and p_lift, leak rate, minimum and mean channel height, contact-area fraction) and its gap picture at the
 largest leak (``seal_flange_gap.png``), and prints the onset pressure against the formula.
 
-Run: python benchmarks/seal_scene.py [--nodes 480 5120 20480] [--seal-rtol 1e-4] [--figures docs/figures]
+Run: python benchmarks/seal_scene.py [--nodes 480 5120 20480] [--seal-rtol 1e-4] [--no-merge] [--figures DIR]
 """
 from __future__ import annotations
 
@@ -128,7 +128,11 @@ def main() -> int:
     ap.add_argument("--nodes", type=int, nargs="+", default=sorted(SHAPES), choices=sorted(SHAPES))
     ap.add_argument("--seal-rtol", type=float, default=1e-4, help="the seal curve's tolerance (the scene's: 1e-4)")
     ap.add_argument("--figures", type=Path, default=None, help="draw the library scene's figures into this folder")
+    ap.add_argument("--no-merge", action="store_true", help="sum the seat force over every node (no merged rows)")
     args = ap.parse_args()
+    if args.no_merge:
+        import cases.model.seat_contact as seat_contact
+        seat_contact.MERGE_ABOVE = 10 ** 12
     run(build_model(load_scene(ROOT / "cases" / "seal_flange.toml")))  # compile and cache, not counted
     print("| seal nodes | build [s CPU] | run 1 s [s CPU] | of which integration [s CPU] | build + run | picture "
           "| Reynolds solves | knots | steps | seal events |")
