@@ -140,8 +140,8 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         for n in args.nodes:
             r = measure(n, Path(tmp), args.seal_rtol)
-            print(f"| {r['nodes']} | {r['build']:.2f} | {r['run']:.2f} | {r['integration']:.2f} | {r['build'] + r['run']:.2f} | "
-                  f"{r['picture']:.2f} | {r['solves']} | {r['knots']} | {r['steps']} | {r['events']} |", flush=True)
+            print(f"| {r['nodes']} | {r['build']:.2f} | {r['run']:.2f} | {r['integration']:.2f} | "
+                  f"{r['build'] + r['run']:.2f} | {r['picture']:.2f} | {r['solves']} | {r['knots']} | {r['steps']} | {r['events']} |", flush=True)
     if args.figures is not None:
         figures(args.figures)
     return 0
