@@ -47,7 +47,7 @@ def test_a_latin1_table_is_named(capsys, tmp_path):
     (("solver", "rtol"), 1e30, "solver.rtol: expected a relative tolerance 0 < rtol < 1, got 1e+30"),
     (("exchange", "law"), 4, "exchange[0].law: expected one of 'orifice', 'fabric_leakage', 'graefe', "
                              "'mass_rate_leakage', 'volume_rate_leakage', 'mass_flux', 'volume_flux', "
-                             "'bulk_viscosity', 'linear_resistance', got 4"),
+                             "'bulk_viscosity', 'linear_resistance', 'seal', got 4"),
     (("exchange", "law"), True, "exchange[0].law: expected one of"),
     (("exchange", "law"), "orifce", "exchange[0].law: expected one of"),
     (("exchange", "name"), 7, "exchange[0].name: expected a text string, got 7"),

@@ -82,6 +82,10 @@ def _build(scene: Scene) -> Model:
         network = Network(gas, cavities, exchanges, ambient)
     else:
         network = _scene_network(scene, gas, cavities, exchanges, ambient, geo)
+    if any(e.law == "seal" for e in scene.exchange):
+        from cases.model.build_seal import finish_seals
+
+        finish_seals(scene, network, geo)
     dt = scene.time.output_interval or t_end / 500.0
     n = max(2, int(math.floor(t_end / dt + 1e-9)) + 1)
     grid = np.linspace(0.0, (n - 1) * dt, n)
@@ -90,7 +94,12 @@ def _build(scene: Scene) -> Model:
     options = SolverOptions(method=s.method, rtol=s.rtol, atol=(s.atol or s.rtol / 100) * _scales(network, t_end),
                             max_step=s.max_step or math.inf, max_steps=scene.limits.steps,
                             max_wall=scene.limits.wall or math.inf, integrator=s.integrator)
-    return Model(scene, network, options, times, _modelled(scene, cavities), geo)
+    modelled = _modelled(scene, cavities)
+    if geo is not None and geo.get("seals"):
+        from cases.results.seal_outputs import seal_summary
+
+        modelled["seals"] = seal_summary(geo["seals"])
+    return Model(scene, network, options, times, modelled, geo)
 
 
 def _species(scene: Scene) -> tuple:

@@ -56,5 +56,6 @@ def _seat(net) -> Seat | None:
     c = net.contact
     if c is None:
         return None
-    return Seat(c.law_vector, c.table, np.asarray(c.thresholds(), dtype=float), bool(net.held), force_scale(net),
+    return Seat(c.law_vector, c.merged, np.asarray(c.thresholds(), dtype=float), bool(net.held), force_scale(net),
                 c.hard)
+

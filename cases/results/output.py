@@ -124,6 +124,10 @@ def write_results(results, out: Path) -> dict:
 
     plot_history(paths["plot"], results.columns, results.history, results.model.scene.title,
                  scene_fe_pressures(results.model.scene))
+    from cases.results.seal_outputs import write_seal_pictures
+
+    for k, picture in enumerate(write_seal_pictures(results, out)):
+        paths[f"seal{k}"] = picture
     if getattr(results, "contact", None) is not None:
         paths["contact"] = out / "contact.npz"
         with atomic_path(paths["contact"]) as tmp:

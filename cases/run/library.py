@@ -35,6 +35,7 @@ CASES = {
     "bag_unfold": "bag_unfold.toml",
     "relief_valve": "relief_valve.toml",
     "relief_valve_undamped": "relief_valve_undamped.toml",
+    "seal_flange": "seal_flange.toml",
     "deck_box_blowdown": "decks/box_blowdown.toml",
     "deck_vented_box_blockage": "decks/vented_box_blockage.toml",
     "deck_hydraulic_two_cavity": "decks/hydraulic_two_cavity.toml",

@@ -16,6 +16,7 @@ from cases.model.build_leak import blockage_rule
 from cases.results.contact_results import contact_summary, nodal_history
 from cases.results.readback import cavity_summary, history_columns, history_rows
 from cases.results.body_outputs import body_columns
+from cases.results.seal_outputs import seal_columns
 from cases.scene.errors import SceneError
 from cases.results.history_outputs import engineering_columns
 from cases.run.provenance import provenance
@@ -140,6 +141,10 @@ def _run(model: Model, options, progress: bool) -> Results:
     if bodies:
         columns = columns + [name for name, _ in bodies]
         history = np.column_stack([history] + [values for _, values in bodies])
+    seals = seal_columns(model, columns, history)
+    if seals:
+        columns = columns + [name for name, _ in seals]
+        history = np.column_stack([history] + [values for _, values in seals])
     return Results(model, traj, columns, history, summary, contact)
 
 

@@ -12,7 +12,7 @@ from cavity.hydraulic import hydraulic_pressure
 from cavity.tolerances import R_UNIVERSAL as R_U
 
 from .hosted import hosted_state
-from .layout import CavityFloat, CavityInt, Energy, Fluid, StateColumn, VolumeKind
+from .layout import LAW_LOAD, BodyColumn, CavityFloat, CavityInt, Energy, ExchangeInt, Fluid, StateColumn, VolumeKind
 from .tables import spline_piece_value, spline_value, table_slope, table_value
 
 __all__ = ["states", "volume_of", "eos_volume"]
@@ -125,8 +125,22 @@ def _gas_state(M, i, t, y):
 
 
 @njit(cache=True)
+def body_loads(M, y):
+    """Write the dynamic body's displacement s [m] into column LAW_LOAD of the law floats of every exchange whose
+    law reads it (``ExchangeInt.BODY_LOAD``: a seal loaded by the body)."""
+    k = int(M.body[BodyColumn.OFFSET])
+    if k < 0:
+        return
+    for j in range(M.exchange_int.shape[0]):
+        if M.exchange_int[j, ExchangeInt.BODY_LOAD] == 1:
+            M.law_float[j, LAW_LOAD] = y[k]
+
+
+@njit(cache=True)
 def states(M, t, y):
-    """Fill ``M.state`` with every cavity's state at (t, y); False when a temperature solve failed."""
+    """Fill ``M.state`` with every cavity's state at (t, y), and the law floats of the laws that read the dynamic
+    body's displacement (:func:`body_loads`); False when a temperature solve failed."""
+    body_loads(M, y)
     ok = True
     for i in range(M.cavity_int.shape[0]):
         fluid = M.cavity_int[i, CavityInt.FLUID]

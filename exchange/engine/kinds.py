@@ -69,6 +69,7 @@ def flags_of(state: int, pop_vent: bool) -> tuple:
 class KinkVariable(IntEnum):
     UPSTREAM_PRESSURE = 0  # max(p_a, p_b): a row of a Cd table of pressure
     PRESSURE_DIFFERENCE = 1  # |p_a − p_b|: a row of a leakage table
+    BODY_DISPLACEMENT = 2  # the dynamic body's displacement s [m] (ExchangeInt.BODY_LOAD): a seal's closure, its range
 
 
 class SwitchKind(IntEnum):

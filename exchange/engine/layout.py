@@ -33,7 +33,7 @@ __all__ = ["Model", "ModelArrays", "new_model", "LAW_SIGNATURE", "LAW_SLOTS", "T
            "CavityFloat", "InflatorInt", "InflatorFloat", "ExchangeInt", "ExchangeFloat", "StateColumn",
            "AmbientColumn", "BodyColumn", "SeatState", "SeatNode", "SeatLaw", "KinkColumn", "SegmentColumn", "segment_blocks", "Energy", "Fluid", "VolumeKind",
            "AreaKind", "InflatorKind", "OpenState", "open_state_of", "flags_of", "SwitchKind", "KinkVariable", "Status", "SWITCH_LABELS",
-           "side", "is_kink", "is_body_switch", "is_seat_switch", "one_way_direction", "UNLOCKED", "KNOT_SLACK"]
+           "side", "is_kink", "is_body_switch", "is_seat_switch", "one_way_direction", "UNLOCKED", "KNOT_SLACK", "LAW_LOAD"]
 
 
 class TableColumn(IntEnum):
@@ -109,6 +109,7 @@ class ExchangeInt(IntEnum):
     AREA = 10  # AreaKind
     DELTA_AREA = 11  # DELTA LEAKAGE AREA
     PRESCRIBED = 12  # a prescribed flow: signed, from UP, whatever the pressures
+    BODY_LOAD = 13  # 1: its law reads the dynamic body's displacement s [m] in law_float column LAW_LOAD
 
 
 class ExchangeFloat(IntEnum):
@@ -203,6 +204,10 @@ def side(st, amb, i, column):
     i's row of the state scratch ``st``, or ambient ``amb`` when i < 0."""
     return amb[column] if i < 0 else st[i, column]
 
+
+#: The law_float column into which :func:`exchange.engine.gas.states` writes the dynamic body's displacement s [m]
+#: for an exchange whose law reads it (``ExchangeInt.BODY_LOAD``, a seal's load).
+LAW_LOAD = 0
 
 #: ``CavityInt.PIECE`` of a volume spline evaluated on the piece holding x (no piece held).
 UNLOCKED = -2

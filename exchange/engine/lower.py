@@ -148,7 +148,8 @@ def _exchanges(net, tables, host, geometry) -> tuple:
         amplitude = tables.add(act.amplitude) if window and act.amplitude is not None else -1
         ints.append((ex.upstream, -1 if ex.downstream is None else ex.downstream, int(bool(ex.two_way)), amplitude,
                      int(window), int(net.can_equalise(j)), int(pop), slot, steps, scale, kind,
-                     int(window and act.delta_area), int(bool(ex.law.prescribed))))
+                     int(window and act.delta_area), int(bool(ex.law.prescribed)),
+                     int(bool(getattr(ex.law, "body_load", False)))))
         floats.append((ex.area, act.open_time if window else 0.0, act.close_time if window else math.inf,
                        act.pop_pressure if pop else 0.0, act.hold_time if pop else 0.0, switch_scale,
                        _area_at_activation(net, j), (act.close_pressure or 0.0) if window else 0.0,

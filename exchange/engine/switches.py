@@ -20,7 +20,7 @@ from cavity.isentropic import critical_pressure_ratio
 from .body import seat_switch
 from .gas import states
 from .hosted import hosted_choke_ratio
-from .layout import (AmbientColumn, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, Fluid, KinkColumn,
+from .layout import (LAW_LOAD, AmbientColumn, SeatLaw, SeatState, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, Fluid, KinkColumn,
                      KinkVariable, StateColumn, SwitchKind, TableColumn, is_body_switch, is_seat_switch, side)
 
 __all__ = ["switches", "exchange_switch", "choke_ratio_of", "kink_value", "body_switch", "knot_switch"]
@@ -69,8 +69,11 @@ def exchange_switch(M, kind, j):
 @njit(cache=True)
 def kink_value(M, r):
     """A law's kink r (a row of its table): (max(p_a, p_b) − x)/x on a Cd table of pressure, (|p_a − p_b| − Δp)/Δp
-    on a leakage table."""
+    on a leakage table, (s − x)/L on the dynamic body's displacement (L its seat's size, else 1 m)."""
     j, x = M.kink_int[r, KinkColumn.EXCHANGE], M.kink_x[r]
+    if M.kink_int[r, KinkColumn.VARIABLE] == KinkVariable.BODY_DISPLACEMENT:
+        size = M.seat_law[SeatLaw.SEAT_SIZE] if M.seat_state[SeatState.HAS] != 0.0 else 1.0
+        return (M.law_float[j, LAW_LOAD] - x) / size
     ei = M.exchange_int
     pa, pb = M.state[ei[j, ExchangeInt.UP], P], side(M.state, M.ambient, ei[j, ExchangeInt.DOWN], P)
     if M.kink_int[r, KinkColumn.VARIABLE] == KinkVariable.UPSTREAM_PRESSURE:

@@ -22,7 +22,7 @@ import numpy as np
 
 from exchange.engine.layout import LAW_SLOTS
 
-from . import bulk_viscosity, fabric, flux, graefe, leakage_table, linear_resistance, orifice
+from . import bulk_viscosity, fabric, flux, graefe, leakage_table, linear_resistance, orifice, seal
 from .spec import LAW_FLOATS, LAW_INTS, LawKey, LawSpec
 
 __all__ = ["LawKey", "LawSpec", "LAWS", "LAW_FLOATS", "LAW_INTS", "register", "spec_of_name", "spec_of", "names",
@@ -37,6 +37,7 @@ LAWS = [
     flux.LAW,
     bulk_viscosity.LAW,
     linear_resistance.LAW,
+    seal.LAW,
 ]
 
 

@@ -8,6 +8,8 @@
   the flange's displacement (or a held flange's reaction), built once, with the exact closure load;
 * :mod:`~exchange.seal.kernels`: what the engine evaluates per right-hand side (compiled);
 * :mod:`~exchange.seal.flange`: leak onset and lift-off pressures of a preloaded flange;
+* :mod:`~exchange.seal.spec`, :mod:`~exchange.seal.setup`: a scene's seal exchange, its law built once with its
+  flange (the law and its engine kernel: :mod:`exchange.laws.seal`);
 * :mod:`~exchange.seal.outputs`, :mod:`~exchange.seal.leak_fit`, :mod:`~exchange.seal.viscosity`,
   :mod:`~exchange.seal.meshes`: outputs and picture, calibration on a measured curve, gas properties, test meshes.
 """

@@ -17,7 +17,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from exchange.contact.laws import HARD, LINEAR, SOFTENED, TOUCH, SeatLaw, SeatNode, softened_pressure
-from exchange.seal.channel import seat_channel_heights, seat_state
+from exchange.seal.channel import channel_height, seat_channel_heights, seat_state
 from exchange.seal.gap_laws import NoGap
 
 __all__ = ["DisplacementPath", "ReactionPath", "closing_clearance"]
@@ -82,6 +82,13 @@ class DisplacementPath:
     def in_contact(self, s):
         """(n,) bool: nodes in contact at ``s``."""
         return seat_state(s, self.nodes, self.law)[2]
+
+    def state(self, s):
+        """(heights (n,) [m], in contact (n,) bool) at ``s`` from one evaluation of the contact law: what
+        :meth:`heights` and :meth:`in_contact` give."""
+        clearance, pressure, closed = seat_state(s, self.nodes, self.law)
+        h = channel_height(clearance, pressure, self.gap_law, self.p_max)
+        return np.where(self.direction * (s - self._closing) >= 0.0, 0.0, h), closed
 
     def closing(self):
         """(n,) displacement [m] at which each node's channel closes (inf never; the path's direction applies)."""

@@ -31,7 +31,8 @@ LOWERABLE = ["blowdown_choked", "blowdown_isothermal", "blowdown_subsonic", "fil
              "bag_unfold",  # a vent cut from a cavity mesh series: face areas that change between frames
              "deck_box_blowdown", "deck_vented_box_blockage", "deck_wang_nefske_bag",
              "deck_hydraulic_two_cavity"]  # hydraulic cavities, bulk viscosity and a volume-rate leakage table
-SEATED = ["relief_valve", "relief_valve_undamped"]  # seat contact: compared in tests/exchange/engine/test_seat.py
+SEATED = ["relief_valve", "relief_valve_undamped",  # seat contact: compared in tests/exchange/engine/test_seat.py
+          "seal_flange"]  # and a seal loaded by the seated flange
 
 
 def model_of(name):

@@ -31,7 +31,25 @@ OBJECTS = {
     "mass_flux": lambda m: m.FluxLaw("mass", 0.3),
     "bulk_viscosity": lambda m: m.BulkViscosityLaw(2e3, 0.5),
     "linear_resistance": lambda m: m.LinearResistanceLaw(1e-6),
+    "seal": lambda m: _seal_law(m),
 }
+
+
+def _seal_law(m):
+    """A seal on a small ring under a flat flange 1 um away (penalty contact), with slip, evaluated half-way to
+    touch."""
+    from exchange.seal.film import seal_film
+    from exchange.seal.gap_laws import ExponentialGap
+    from exchange.seal.meshes import annulus_mesh, flat_flange_seat
+    from exchange.seal.setup import seal_law
+
+    v, f = annulus_mesh(0.01, 0.02, 2, 16)
+    seat = flat_flange_seat(v, seal_film(v, f).areas, 1e-6)
+    contact = np.array([1.0, 1e12, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.02])
+    setup = m.seal.SealSetup(ExponentialGap(5e-6, 1e6, 1e-7), "exponential", "inner", "outer", 0.0, "sutherland",
+                             "Nitrogen", True, -2e-6, 1e-6, math.nan, 1e-4)
+    law = seal_law(m.seal.SealLaw(setup), v, f, "inner", "outer", seat, contact, (1e-6,))[0]
+    return replace(law, load=0.5e-6)
 
 
 def kernel_flow(law, up: GasPoint, p_down, area, t):
