@@ -17,6 +17,7 @@ import numpy as np
 from cases.scene.errors import SceneError
 from cavity.tables import Table
 from cases.scene.files import load_scene, read_scene_data, scene_from_dict
+from cases.scene.ply import write_ply
 
 __all__ = ["Scene", "load"]
 
@@ -41,25 +42,6 @@ def _is_default(f, value) -> bool:
 
 def _file_name(where: str, suffix: str) -> str:
     return "".join(c if c.isalnum() or c in "._-" else "_" for c in where).strip("_") + suffix
-
-
-def write_ply(path: Path, vertices, faces) -> None:
-    """A binary PLY with double-precision vertices (trimesh's own PLY export rounds them to float32).
-
-    Parameters
-    ----------
-    vertices : (n, 3) float
-        [m]
-    faces : (m, 3) or (m, 4) int
-    """
-    v, f = np.asarray(vertices, "<f8"), np.asarray(faces, "<i4")
-    header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\nproperty double x\n"
-              f"property double y\nproperty double z\nelement face {len(f)}\n"
-              "property list uchar int vertex_indices\nend_header\n")
-    cells = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", (f.shape[1],))])
-    cells["n"], cells["i"] = f.shape[1], f
-    with open(path, "wb") as fh:
-        fh.write(header.encode() + v.tobytes() + cells.tobytes())
 
 
 def _write_table(value, path: Path, where: str) -> None:
