@@ -208,10 +208,14 @@ def test_a_nan_vertex(capsys, tmp_path):
     assert err == "cavity[0].mesh: 'm.ply': vertex 3 has a non-finite coordinate"
 
 
-def test_a_mesh_in_millimetres_is_warned(capsys, tmp_path):
+def test_a_mesh_in_millimetres_is_an_error_unless_meant(capsys, tmp_path):
     s = trimesh.creation.icosphere(subdivisions=2, radius=200.0)  # meant as 200 mm
-    scene = write(tmp_path, mesh_scene(tmp_path, s))
-    code, err = run_cli(capsys, scene, tmp_path / "out")
+    data = mesh_scene(tmp_path, s)
+    err = error_line(capsys, tmp_path, data)
+    assert err.startswith("cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3 and spans 692.82 m: coordinates in "
+                          "millimetres (then it encloses 0.0324 m^3)?"), err
+    data["units"] = {"unchecked": ["cavity[0].mesh"]}  # meant: a warning remains
+    code, err = run_cli(capsys, write(tmp_path, data), tmp_path / "out")
     assert code == 0
     assert len(err) == 1 and err[0].startswith("ventsim: warning: cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3, spans 692.82 ")
     assert err[0].endswith("m: coordinates look like millimetres (x 1e-3: 0.693 m); a mesh must be in metres")

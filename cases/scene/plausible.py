@@ -102,7 +102,7 @@ def _volumes(c: _Checker) -> list:
             where, v = f"cavity[{i}].mesh", abs(facts.get("volume", 0.0)) or None
             if facts.get("extent", 0.0) > MAX_EXTENT or (v or 0.0) > MAX_VOLUME:
                 c.fail(where, f"{cav.mesh!r} encloses {v or 0.0:.6g} m^3 and spans {facts.get('extent', 0.0):.6g} m: "
-                              f"coordinates in millimetres (x 1e-3: {(v or 0.0) * 1e-9:.3g} m^3)? Meshes are in the "
+                              f"coordinates in millimetres (then it encloses {(v or 0.0) * 1e-9:.3g} m^3)? Meshes are in the "
                               "scene's units (set [units] system = 'mm-t-s' or 'mm-kg-ms', or scale the mesh)")
         elif cav.volume_table and (c.scene.base / cav.volume_table).is_file():
             from cases.scene.tables_io import read_table

@@ -40,8 +40,12 @@ class UnitsSpec:
                       "false turns them all off", default=True)
     unchecked: tuple = key("keys exempt from the plausibility checks, as their error names them "
                            "(['cavity[0].pressure'])", default=())
-    given: str = key("set by the loader: the system the file was written in (values held here are SI)",
-                     default="")
+    _given: str = ""  # set by the loader: the system the file was written in (the values held are SI)
+
+    @property
+    def given(self) -> str:
+        """The unit system the scene was written in ('' when it was SI); its values are held in SI."""
+        return self._given
 
 
 #: Keys whose unit is not a plain product of SI symbols, or is left alone: (spec class name, key) -> exponents.
@@ -79,7 +83,7 @@ def to_si(scene, path):
         return scene
     conv = _Converter(SYSTEMS[system], path, scene.base)
     out = conv.spec(scene, "")
-    return replace(out, units=replace(scene.units, system="SI", given=system))
+    return replace(out, units=replace(scene.units, system="SI", _given=system))
 
 
 class _Converter:
