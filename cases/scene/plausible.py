@@ -5,8 +5,8 @@ value and the likely mistake.
 - an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure);
 - a gas temperature below 150 K (a temperature in °C);
 - an exchange or inflator orifice area larger than the whole surface of its cavity (an area in mm² or cm²);
-- a cavity volume above 100 m³, one whose inflators add less than 0.1 % of the gas it holds, or one that only
-  vents and whose vents would take more than 1000 times ``time.end`` to relieve it (litres or mm³);
+- a cavity volume above 100 m³; or of 1 m³ or more whose inflators add less than 0.1 % of the gas it holds, or
+  that only vents and whose vents would take more than 1000 times ``time.end`` to relieve it (litres or mm³);
 - a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
   tolerance above 1 m (millimetres).
 
@@ -29,6 +29,9 @@ MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT, MIN_INFLATED = 1e3, 150.0
 MAX_TOLERANCE = 1.0
 #: Most vent time constants in time.end of a cavity that only vents (the library's scenes: 12 at most).
 MAX_VENT_TIMES = 1e3
+#: Cavities of at least this volume [m^3] are checked against their inflators and vents (a short preview of a
+#: small vessel is not a mistake).
+MIN_VENTED_VOLUME = 1.0
 #: Surface of a sphere of volume V is SPHERE·V^(2/3), the least surface that can enclose V.
 SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
 _R_AIR = 287.05  # J/(kg K), for the order of magnitude of a cavity's gas mass
@@ -146,12 +149,13 @@ def _areas(c: _Checker, volumes: list) -> None:
 
 
 def _inflated(c: _Checker, volumes: list) -> None:
-    """A cavity filled by inflators whose gas would not change its pressure: its volume is orders too large."""
+    """A cavity of MIN_VENTED_VOLUME or more filled by inflators whose whole gas would not change its pressure, or
+    vented orders of magnitude too slowly for time.end: its volume is orders too large."""
     end = c.scene.time.end
     for i, cav in enumerate(c.scene.cavity):
         where, v = volumes[i]
-        if cav.fluid != "gas" or not v:
-            continue
+        if cav.fluid != "gas" or not v or v < MIN_VENTED_VOLUME:
+            continue  # a short preview of a small cavity is not a mistake
         if not cav.inflator:
             _vented(c, cav, where, v)
             continue
@@ -160,11 +164,12 @@ def _inflated(c: _Checker, volumes: list) -> None:
             if inf.type != "mass_temperature" or inf.mass_flow is None:
                 added = math.inf  # the other types' mass is not known before the run
                 break
-            added += inf.scale * _integral(inf.mass_flow, max(end - inf.start, 0.0))
+            last = inf.mass_flow.x[-1] if isinstance(inf.mass_flow, Table) else 0.0
+            added += inf.scale * _integral(inf.mass_flow, max(end - inf.start, last))
         held = cav.pressure * v / (_R_AIR * cav.temperature)
         if added < MIN_INFLATED * held:
-            c.fail(where, f"{v:.6g} m^3 holds about {held:.3g} kg of gas and its inflators add {added:.3g} kg by "
-                          f"time.end ({added / held:.2%}): a volume in litres ({v:g} L = {v * 1e-3:.6g} m^3) or "
+            c.fail(where, f"{v:.6g} m^3 holds about {held:.3g} kg of gas and its inflators add {added:.3g} kg in all "
+                          f"({added / held:.2%}): a volume in litres ({v:g} L = {v * 1e-3:.6g} m^3) or "
                           "mm^3? Volumes are in m^3")
 
 
@@ -173,7 +178,8 @@ def _vented(c: _Checker, cav, where: str, v: float) -> None:
     constant V/(Cd·A·c₀), Cd 0.6, air's speed of sound): its volume is orders too large for the scene."""
     area = sum(e.effective_area or e.area for e in c.scene.exchange if cav.name in (e.from_, e.to)
                and not e.leakage_table and e.law in ("orifice", "fabric_leakage"))
-    if not area or any(cav.name == e.from_ and (e.pop_pressure or e.open_time) for e in c.scene.exchange):
+    if not area or any(cav.name == e.from_ and (e.pop_pressure or e.open_time)
+                                                for e in c.scene.exchange):
         return
     tau = v / (0.6 * area * math.sqrt(1.4 * _R_AIR * cav.temperature))
     if tau > MAX_VENT_TIMES * c.scene.time.end:
