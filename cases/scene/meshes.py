@@ -144,4 +144,5 @@ def _check_units(f: dict, where: str, name: str, closed: bool) -> None:
     if (closed and volume > MILLIMETRE_VOLUME) or extent > MILLIMETRE_EXTENT:
         size = f"encloses {volume:.6g} m^3, " if closed else ""
         caution(f"{where}: {name!r} {size}spans {extent:.6g} m: coordinates look like millimetres (x 1e-3: "
-                f"{extent * 1e-3:.3g} m); a mesh must be in metres")
+                f"{extent * 1e-3:.3g} m); a mesh must be in the scene's units: set [units] system = 'mm-t-s' or "
+                "'mm-kg-ms', or scale the mesh by 1e-3")

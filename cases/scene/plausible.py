@@ -66,6 +66,7 @@ def check_plausible(scene, path) -> None:
     _areas(c, volumes)
     _inflated(c, volumes)
     _lengths(c)
+    _coefficients(c)
 
 
 def _pressures(c: _Checker) -> None:
@@ -219,3 +220,28 @@ def _lengths(c: _Checker) -> None:
         if e.contact_tolerance > MAX_TOLERANCE:
             c.fail(f"exchange[{j}].contact_tolerance", f"{c.given(e.contact_tolerance, (1, 0, 0), 'm')} is above "
                                                        f"{MAX_TOLERANCE:g} m: millimetres? Lengths are in m")
+
+
+#: Largest molar mass [kg/mol], molar cp at 300 K [J/(mol K)] and discharge coefficient [-] taken without override.
+MAX_MOLAR_MASS, MAX_MOLAR_CP, MAX_CD = 1.0, 1000.0, 10.0
+
+
+def _coefficients(c: _Checker) -> None:
+    for i, sp in enumerate(c.scene.species):
+        if sp.molar_mass > MAX_MOLAR_MASS:
+            c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is above {MAX_MOLAR_MASS:g} kg/mol: in g/mol "
+                                               f"({sp.molar_mass:g} g/mol = {sp.molar_mass * 1e-3:.6g} kg/mol)?")
+        if sp.cp:
+            a = tuple(sp.cp) + (0.0,) * (6 - len(sp.cp))
+            T = 300.0
+            cp = a[0] + a[1] * T + a[2] * T ** 2 + a[3] * T ** 3 + a[4] / T ** 2 + a[5] * T ** 4
+            if not 0.0 < cp <= MAX_MOLAR_CP:
+                c.fail(f"species[{i}].cp", f"gives cp = {cp:.6g} J/(mol K) at 300 K, expected 0 to {MAX_MOLAR_CP:g}: "
+                                           "per kg instead of per mol (multiply by the molar mass), or a coefficient "
+                                           "of the wrong power of T?")
+    for j, e in enumerate(c.scene.exchange):
+        cd = getattr(e, "discharge_coefficient", None)
+        top = max(cd.y) if isinstance(cd, Table) else cd
+        if isinstance(top, float) and top > MAX_CD:
+            c.fail(f"exchange[{j}].discharge_coefficient", f"{top:.6g} is above {MAX_CD:g}: a discharge coefficient "
+                                                           "is at most about 1 (the ideal flow)")

@@ -263,7 +263,8 @@ def _held_tables(scene, path) -> None:
             continue  # the gas temperature after the inflator stopped flowing does not matter
         if start + table.x[-1] < end and table.y[-1] != 0.0:
             caution(f"{where}: the table ends at {start + table.x[-1]:.6g} s, before time.end = {end:.6g} s: its "
-                    f"last value {table.y[-1]:.6g} is held from there")
+                    f"last value {table.y[-1]:.6g} is held from there; extend the table to time.end (or end it with 0) "
+                    "if that is not meant")
 
 
 def _inflator(scene, where: str):
