@@ -50,8 +50,8 @@ STIFF_RATIO = 1e4
 
 def stiffness_advice(method: str, system=None, t: float = 0.0, y=None, t_end: float | None = None) -> str:
     """The advice appended to a step-budget or step-size failure of an explicit method: switch to an implicit
-    method when the scene is stiff at (t, y) (spectral radius ρ of ∂f/∂y by forward differences, ρ·(t_end − t) >
-    :data:`STIFF_RATIO`), else look for an input orders of magnitude off. Without a system to test, nothing.
+    method when the scene is stiff at (t, y) (spectral radius ρ of ∂f/∂y by differences,
+    ρ·(t_end − t) > :data:`STIFF_RATIO`), else look for an input orders of magnitude off. Without a system to test, nothing.
 
     >>> stiffness_advice("Radau"), stiffness_advice("DOP853")
     ('', '')
@@ -65,7 +65,8 @@ def stiffness_advice(method: str, system=None, t: float = 0.0, y=None, t_end: fl
     scale = f"{1.0 / rho:.3g} s" if rho > 0 else "none"
     if rho * left > STIFF_RATIO:
         return (f"; the scene is stiff here (its fastest time scale, {scale}, is {rho * left:.2g} times shorter than "
-                f"the {left:.3g} s left) for the explicit method {method!r}: set [solver] method = 'Radau' (or 'LSODA')")
+                f"the {left:.3g} s left) for the explicit method {method!r}: set [solver] method = 'Radau' "
+                "(or 'LSODA')")
     return (f"; the scene is not stiff here (fastest time scale {scale}): an input orders of magnitude off (an area, "
             "a rate, a volume: check the units) or a discontinuity the scene does not declare is more likely")
 

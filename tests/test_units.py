@@ -128,8 +128,8 @@ def si_and(system: str, length: float, mass: float, time: float) -> tuple:
     other["ambient"]["pressure"] = 101325.0 / pressure
     other["units"] = {"system": system}
     other["exchange"] = [{"name": "vent", "from": "tank", "area": 2e-5 / length ** 2, "discharge_coefficient": 0.8}]
-    other["cavity"][0]["inflator"][0]["mass_flow"] = np.array([[0.0, 0.2 * time / mass], [0.05 / time, 0.4 * time / mass],
-                                                               [0.1 / time, 0.0]])
+    other["cavity"][0]["inflator"][0]["mass_flow"] = np.array([[0.0, 0.2 * time / mass],
+                                                               [0.05 / time, 0.4 * time / mass], [0.1 / time, 0.0]])
     return si, other
 
 
@@ -155,7 +155,8 @@ def test_files_are_converted_too(bag, tmp_path):
         rows = np.loadtxt(tmp_path / "data" / f"{name}.csv", delimiter=",", skiprows=1, ndmin=2)
         np.savetxt(tmp_path / "data" / f"{name}_mm.csv", rows * [1e3, fy], delimiter=",", fmt="%.17g")
     mm = bag('"meshes/cushion.ply"', '"meshes/cushion_mm.ply"', "inflator_driver.csv", "inflator_driver_mm.csv",
-             "inflator_driver_temperature.csv", "inflator_driver_temperature_mm.csv", "[time]", '[units]\nsystem = "mm-kg-ms"\n\n[time]',
+             "inflator_driver_temperature.csv", "inflator_driver_temperature_mm.csv",
+             "[time]", '[units]\nsystem = "mm-kg-ms"\n\n[time]',
              "end = 0.06 ", "end = 60.0 ", "output_interval = 0.0002", "output_interval = 0.2",
              "pressure = 101325.0 ", "pressure = 101325.0e-9 ", "pressure = 1.2e5 ", "pressure = 1.2e-4 ",
              "[0.0, 0.0, 0.2375, 0.0825]", "[0.0, 0.0, 237.5, 82.5]", "initial_velocity = 5.0 ",

@@ -109,7 +109,8 @@ def _volumes(c: _Checker) -> list:
             where, v = f"cavity[{i}].mesh", abs(facts.get("volume", 0.0)) or None
             if facts.get("extent", 0.0) > MAX_EXTENT or (v or 0.0) > MAX_VOLUME:
                 c.fail(where, f"{cav.mesh!r} encloses {v or 0.0:.6g} m^3 and spans {facts.get('extent', 0.0):.6g} m: "
-                              f"coordinates in millimetres (then it encloses {(v or 0.0) * 1e-9:.3g} m^3)? Meshes are in the "
+                              f"coordinates in millimetres (then it encloses {(v or 0.0) * 1e-9:.3g} m^3)? "
+                              "Meshes are in the "
                               "scene's units (set [units] system = 'mm-t-s' or 'mm-kg-ms', or scale the mesh)")
         elif cav.volume_table and (c.scene.base / cav.volume_table).is_file():
             from cases.scene.tables_io import read_table
@@ -229,7 +230,8 @@ MAX_MOLAR_MASS, MAX_MOLAR_CP, MAX_CD = 1.0, 1000.0, 10.0
 def _coefficients(c: _Checker) -> None:
     for i, sp in enumerate(c.scene.species):
         if sp.molar_mass > MAX_MOLAR_MASS:
-            c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is above {MAX_MOLAR_MASS:g} kg/mol: in g/mol "
+            c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is above {MAX_MOLAR_MASS:g} kg/mol: "
+                                               f"in g/mol "
                                                f"({sp.molar_mass:g} g/mol = {sp.molar_mass * 1e-3:.6g} kg/mol)?")
         if sp.cp:
             a = tuple(sp.cp) + (0.0,) * (6 - len(sp.cp))

@@ -56,9 +56,11 @@ _SKIP = ("LimitsSpec", "FeRunSpec", "UnitsSpec")
 #: "mesh" for a single mesh.
 _FILES = {("CavitySpec", "mesh"): "mesh", ("BodySpec", "mesh"): "mesh", ("ExchangeSpec", "leakage_surface"): "mesh",
           ("ContactSpec", "seat_mesh"): "mesh",
-          ("CavitySpec", "volume_table"): ((0, 0, 1), (3, 0, 0)), ("CavitySpec", "mesh_scale_table"): ((0, 0, 1), (0, 0, 0)),
+          ("CavitySpec", "volume_table"): ((0, 0, 1), (3, 0, 0)),
+          ("CavitySpec", "mesh_scale_table"): ((0, 0, 1), (0, 0, 0)),
           ("CavitySpec", "temperature_table"): ((0, 0, 1), (0, 0, 0)),
-          ("BodySpec", "displacement_table"): ((0, 0, 1), (1, 0, 0)), ("BodySpec", "rotation_table"): ((0, 0, 1), (0, 0, 0))}
+          ("BodySpec", "displacement_table"): ((0, 0, 1), (1, 0, 0)),
+          ("BodySpec", "rotation_table"): ((0, 0, 1), (0, 0, 0))}
 _UNCONVERTED = {("CavitySpec", "mesh_series"), ("BodySpec", "mesh_series"), ("BodySpec", "vertex_trajectory"),
                 ("ExchangeSpec", "leakage_nodes")}
 _SERIES = (".pvd", ".xdmf", ".xmf", ".npz")
