@@ -171,6 +171,22 @@ def mesh_scene(folder, mesh) -> dict:
     return data
 
 
+@pytest.mark.parametrize("bad", [7, -2])
+def test_a_face_that_indexes_a_missing_vertex(capsys, tmp_path, bad):
+    from cases.scene.ply import write_ply
+
+    s = trimesh.creation.icosphere(subdivisions=1, radius=0.1)
+    faces = np.array(s.faces)
+    faces[5, 2] = len(s.vertices) + bad if bad > 0 else bad
+    write_ply(tmp_path / "m.ply", s.vertices, faces)
+    data = tank()
+    data["cavity"][0].pop("volume")
+    data["cavity"][0]["mesh"] = "m.ply"
+    err = error_line(capsys, tmp_path, data)
+    assert err.startswith(f"cavity[0].mesh: 'm.ply': face 5 indexes vertices {faces[5].tolist()} but the mesh has "
+                          f"{len(s.vertices)} vertices"), err
+
+
 def test_a_mesh_without_faces(capsys, tmp_path):
     (tmp_path / "m.ply").write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                     "property float z\nelement face 0\nproperty list uchar int vertex_indices\n"

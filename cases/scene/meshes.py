@@ -36,6 +36,11 @@ def _facts(path: str, mtime_ns: int, size: int) -> dict:
     facts = {"faces": len(faces), "error": None}
     if not len(faces):
         return facts
+    wrong = np.flatnonzero(np.any((faces < 0) | (faces >= len(vertices)), axis=1))
+    if wrong.size:
+        k = int(wrong[0])
+        return {**facts, "error": f"face {k} indexes vertices {faces[k].tolist()} but the mesh has {len(vertices)} "
+                                  f"vertices (0 to {len(vertices) - 1}): the file is corrupt or truncated"}
     bad = np.flatnonzero(~np.all(np.isfinite(vertices), axis=1))
     if bad.size:
         facts["nonfinite"] = int(bad[0])
