@@ -107,7 +107,8 @@ def test_a_unit_mistake_in_python_is_one_line_naming_it(cavity, key, hint):
 def test_an_exchange_area_in_mm2_in_python():
     data = tank()
     data["exchange"] = [{"name": "vent", "from": "tank", "area": 1400.0}]
-    with pytest.raises(SceneError, match=r"exchange\[0\]\.area: 1400 m\^2 is larger than the whole surface"):
+    with pytest.raises(SceneError, match=r"exchange\[0\]\.area: 1400 m\^2 is larger than 1000 times the surface "
+                                         r"of a sphere"):
         ventsim.Scene(data)
 
 

@@ -58,6 +58,7 @@ def _facts(path: str, mtime_ns: int, size: int) -> dict:
     signed = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0
     facts["shell_volumes"] = np.bincount(labels, weights=signed).tolist()
     facts["volume"] = float(signed.sum())
+    facts["area"] = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1).sum())
     return facts
 
 

@@ -3,8 +3,9 @@ would otherwise run silently or for minutes, each a one-line :class:`SceneError`
 value and the likely mistake.
 
 - an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure);
-- a gas temperature below 150 K (a temperature in °C);
-- an exchange or inflator orifice area larger than the whole surface of its cavity (an area in mm² or cm²);
+- a gas temperature below 150 K (a temperature in °C) or above 10,000 K;
+- an exchange or inflator orifice area larger than twice its cavity's mesh surface, or (a cavity given by its
+  volume) a thousand times the surface of a sphere of that volume (an area in mm² or cm²);
 - a cavity volume above 100 m³; or of 1 m³ or more whose inflators add less than 0.1 % of the gas it holds, or
   that only vents and whose vents would take more than 1000 times ``time.end`` to relieve it (litres or mm³);
 - a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
@@ -34,6 +35,11 @@ MAX_VENT_TIMES = 1e3
 MIN_VENTED_VOLUME = 1.0
 #: Surface of a sphere of volume V is SPHERE·V^(2/3), the least surface that can enclose V.
 SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
+#: An area may be at most this many times its cavity's mesh surface, or the surface of a sphere of its volume (a
+#: flat cavity, a seal's gap 1e-5 of its width, has 1000 times the sphere's surface).
+MESH_AREA_FACTOR, SPHERE_AREA_FACTOR = 2.0, 1000.0
+#: Highest gas temperature [K] and lowest molar mass [kg/mol] (atomic hydrogen: 1.008e-3) taken without override.
+MAX_TEMPERATURE, MIN_MOLAR_MASS = 1e4, 1e-3
 _R_AIR = 287.05  # J/(kg K), for the order of magnitude of a cavity's gas mass
 
 
@@ -91,6 +97,8 @@ def _temperatures(c: _Checker) -> None:
             if inf.tank_temperature:
                 items.append((f"cavity[{i}].inflator[{j}].tank_temperature", inf.tank_temperature))
     for where, T in items:
+        if T > MAX_TEMPERATURE:
+            c.fail(where, f"{T:.6g} K is above {MAX_TEMPERATURE:g} K, hotter than any gas here: a typo?")
         if T < MIN_TEMPERATURE:
             c.fail(where, f"{T:.6g} K is below {MIN_TEMPERATURE:g} K: a temperature in °C ({T:g} °C = "
                           f"{T + 273.15:.6g} K)? Temperatures are absolute [K]")
@@ -103,10 +111,11 @@ def _volumes(c: _Checker) -> list:
 
     out = []
     for i, cav in enumerate(c.scene.cavity):
-        where, v = f"cavity[{i}].volume", cav.volume or None
+        where, v, surface = f"cavity[{i}].volume", cav.volume or None, None
         if cav.mesh and not str(cav.mesh).lower().endswith(SERIES_SUFFIXES) and (c.scene.base / cav.mesh).is_file():
             facts = mesh_facts(c.scene.base / cav.mesh)
             where, v = f"cavity[{i}].mesh", abs(facts.get("volume", 0.0)) or None
+            surface = facts.get("area")
             if facts.get("extent", 0.0) > MAX_EXTENT or (v or 0.0) > MAX_VOLUME:
                 c.fail(where, f"{cav.mesh!r} encloses {v or 0.0:.6g} m^3 and spans {facts.get('extent', 0.0):.6g} m: "
                               f"coordinates in millimetres (then it encloses {(v or 0.0) * 1e-9:.3g} m^3)? "
@@ -120,7 +129,7 @@ def _volumes(c: _Checker) -> list:
         elif v is not None and v > MAX_VOLUME:
             c.fail(where, f"{c.given(v, (3, 0, 0), 'm^3')} is above {MAX_VOLUME:g} m^3: a volume in litres ({v:g} L = "
                           f"{v * 1e-3:.6g} m^3) or mm^3? Volumes are in m^3")
-        out.append((where, None if v is None else v + cav.added_volume))
+        out.append((where, None if v is None else v + cav.added_volume, surface))
     return out
 
 
@@ -139,15 +148,19 @@ def _areas(c: _Checker, volumes: list) -> None:
             if inf.orifice_area:
                 items.append((f"cavity[{i}].inflator[{j}].orifice_area", inf.orifice_area, [i]))
     for where, a, ends in items:
-        known = [(volumes[i][1], c.scene.cavity[i].name) for i in ends if volumes[i][1]]
+        known = [(volumes[i][1], volumes[i][2], c.scene.cavity[i].name) for i in ends if volumes[i][1]]
         if not known:
             continue
-        v, name = max(known)
-        surface = SPHERE * v ** (2.0 / 3.0)
-        if a > surface:
-            c.fail(where, f"{c.given(a, (2, 0, 0), 'm^2')} is larger than the whole surface of cavity {name!r} "
-                          f"({v:.3g} m^3: at least {surface:.3g} m^2): an area in mm^2 ({a:g} mm^2 = {a * 1e-6:.6g} "
-                          f"m^2) or cm^2 ({a * 1e-4:.6g} m^2)? Areas are in m^2")
+        v, surface, name = max(known, key=lambda k: (k[2] is not None, k[0]))
+        if surface:  # a mesh: a vent is a hole in it (a fabric's leaking area at most all of it)
+            bound, what = MESH_AREA_FACTOR * surface, f"{MESH_AREA_FACTOR:g} times the mesh surface of cavity {name!r}"
+        else:  # a volume only: the least surface that holds it is a sphere's, a flat cavity has much more
+            bound = SPHERE_AREA_FACTOR * SPHERE * v ** (2.0 / 3.0)
+            what = f"{SPHERE_AREA_FACTOR:g} times the surface of a sphere of cavity {name!r}'s volume"
+        if a > bound:
+            c.fail(where, f"{c.given(a, (2, 0, 0), 'm^2')} is larger than {what} ({v:.3g} m^3; bound {bound:.3g} m^2): an "
+                          f"area in mm^2 ({a:g} mm^2 = {a * 1e-6:.6g} m^2) or cm^2 ({a * 1e-4:.6g} m^2)? Areas are "
+                          "in m^2")
 
 
 def _inflated(c: _Checker, volumes: list) -> None:
@@ -155,7 +168,7 @@ def _inflated(c: _Checker, volumes: list) -> None:
     vented orders of magnitude too slowly for time.end: its volume is orders too large."""
     end = c.scene.time.end
     for i, cav in enumerate(c.scene.cavity):
-        where, v = volumes[i]
+        where, v, _ = volumes[i]
         if cav.fluid != "gas" or not v or v < MIN_VENTED_VOLUME:
             continue  # a short preview of a small cavity is not a mistake
         if not cav.inflator:
@@ -229,6 +242,9 @@ MAX_MOLAR_MASS, MAX_MOLAR_CP, MAX_CD = 1.0, 1000.0, 10.0
 
 def _coefficients(c: _Checker) -> None:
     for i, sp in enumerate(c.scene.species):
+        if 0.0 < sp.molar_mass < MIN_MOLAR_MASS:
+            c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is below {MIN_MOLAR_MASS:g} kg/mol, "
+                                               "lighter than a hydrogen atom: a typo?")
         if sp.molar_mass > MAX_MOLAR_MASS:
             c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is above {MAX_MOLAR_MASS:g} kg/mol: "
                                                f"in g/mol "
