@@ -51,7 +51,8 @@ STIFF_RATIO = 1e4
 def stiffness_advice(method: str, system=None, t: float = 0.0, y=None, t_end: float | None = None) -> str:
     """The advice appended to a step-budget or step-size failure of an explicit method: switch to an implicit
     method when the scene is stiff at (t, y) (spectral radius ρ of ∂f/∂y by differences,
-    ρ·(t_end − t) > :data:`STIFF_RATIO`), else look for an input orders of magnitude off. Without a system to test, nothing.
+    ρ·(t_end − t) > :data:`STIFF_RATIO`), else look for an input orders of magnitude off. Without a system to
+    test, nothing.
 
     >>> stiffness_advice("Radau"), stiffness_advice("DOP853")
     ('', '')

@@ -233,7 +233,8 @@ def test_a_mesh_in_millimetres_is_an_error_unless_meant(capsys, tmp_path):
     data["units"] = {"unchecked": ["cavity[0].mesh"]}  # meant: a warning remains
     code, err = run_cli(capsys, write(tmp_path, data), tmp_path / "out")
     assert code == 0
-    assert len(err) == 1 and err[0].startswith("ventsim: warning: cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3, spans 692.82 ")
+    assert len(err) == 1 and err[0].startswith("ventsim: warning: cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3, "
+                                               "spans 692.82 ")
     assert err[0].endswith("m: coordinates look like millimetres (x 1e-3: 0.693 m); a mesh must be in the scene's "
                            "units: set [units] system = 'mm-t-s' or 'mm-kg-ms', or scale the mesh by 1e-3")
     import json

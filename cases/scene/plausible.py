@@ -158,7 +158,8 @@ def _areas(c: _Checker, volumes: list) -> None:
             bound = SPHERE_AREA_FACTOR * SPHERE * v ** (2.0 / 3.0)
             what = f"{SPHERE_AREA_FACTOR:g} times the surface of a sphere of cavity {name!r}'s volume"
         if a > bound:
-            c.fail(where, f"{c.given(a, (2, 0, 0), 'm^2')} is larger than {what} ({v:.3g} m^3; bound {bound:.3g} m^2): an "
+            c.fail(where, f"{c.given(a, (2, 0, 0), 'm^2')} is larger than {what} ({v:.3g} m^3; bound "
+                          f"{bound:.3g} m^2): an "
                           f"area in mm^2 ({a:g} mm^2 = {a * 1e-6:.6g} m^2) or cm^2 ({a * 1e-4:.6g} m^2)? Areas are "
                           "in m^2")
 
