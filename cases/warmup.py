@@ -2,8 +2,9 @@
 after installing). It runs a small scene on the compiled network path, one with a blocked leakage surface and
 one whose vent moves with its cavity's mesh series (the moving-area law Python calls too), quietly; numba caches the
 machine code beside the sources (``__pycache__``), so the first ``ventsim run`` starts at once instead of compiling.
-Every scene runs on the same compiled engine, so these three compile all of it. From an empty cache it took 41 s of
-CPU on the development machine (``benchmarks/compile.py`` measures it); with the cache filled, a few seconds."""
+Every scene runs on the same compiled engine, so these three compile all of it. It prints each scene's measured
+wall and CPU time as it goes (``benchmarks/compile.py`` and ``benchmarks/install.py`` measure it in a fresh copy);
+with the cache filled, a few seconds."""
 from __future__ import annotations
 
 import sys
@@ -19,12 +20,16 @@ def main() -> int:
     from cases.run.runner import run
     from cases.scene.files import load_scene
 
-    print("ventsim: compiling the numba kernels ahead of the first run (41 s of CPU measured from an empty cache; "
-          "seconds when cached)", file=sys.stderr, flush=True)
-    start = time.process_time()
-    for name in SCENES:
+    print("ventsim: compiling the numba kernels ahead of the first run (from an empty cache minutes of CPU, "
+          "depending on the machine; seconds when cached)", file=sys.stderr, flush=True)
+    cpu, wall = time.process_time(), time.perf_counter()
+    for k, name in enumerate(SCENES, start=1):
+        c, w = time.process_time(), time.perf_counter()
+        print(f"ventsim:   {k}/{len(SCENES)} {name} ...", end="", file=sys.stderr, flush=True)
         run(build_model(load_scene(HERE / name)))
-    print(f"ventsim: numba kernels compiled and cached ({time.process_time() - start:.0f} s CPU)", file=sys.stderr)
+        print(f" {time.perf_counter() - w:.0f} s ({time.process_time() - c:.0f} s CPU)", file=sys.stderr, flush=True)
+    print(f"ventsim: numba kernels compiled and cached in {time.perf_counter() - wall:.0f} s "
+          f"({time.process_time() - cpu:.0f} s CPU)", file=sys.stderr)
     return 0
 
 

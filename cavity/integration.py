@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from .lazy_scipy import solve_ivp
 
-from .jacobian import jacobian_option
+from .jacobian import EXPLICIT_METHODS, jacobian_option, stiffness_advice
 from .trajectory import Trajectory
 from .progress import ProgressBar
 
@@ -43,22 +43,6 @@ class SolverError(RuntimeError):
     ``trajectory`` holds what was integrated before (a :class:`Trajectory`, or None when nothing was)."""
 
     trajectory = None
-
-
-EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
-
-
-def stiffness_advice(method: str) -> str:
-    """The advice appended to a step-budget or step-size failure of an explicit method.
-
-    >>> stiffness_advice("DOP853")
-    "; the scene looks stiff for the explicit method 'DOP853': set [solver] method = 'Radau' (or 'LSODA')"
-    >>> stiffness_advice("Radau")
-    ''
-    """
-    if method not in EXPLICIT_METHODS:
-        return ""
-    return f"; the scene looks stiff for the explicit method {method!r}: set [solver] method = 'Radau' (or 'LSODA')"
 
 
 @dataclass(frozen=True)
@@ -182,6 +166,18 @@ def _compiled_system(system, options):
 _RTOL_FLOOR = 100 * float(np.finfo(float).eps)  # scipy's smallest rtol
 
 
+def _compiled_advice(system, fast, traj, rtol: float, t: float, y, t_end: float, method: str) -> str:
+    """:func:`stiffness_advice` for a failed compiled run, on its right-hand side in the discrete state where it
+    stopped."""
+    try:
+        if traj is not None and traj.modes and hasattr(system, "restore"):
+            system.restore(traj.modes[-1])
+        rhs_system = fast.solve_ivp_system(SWITCH_NEAR_ZERO_PER_RTOL * rtol)
+    except Exception:  # noqa: BLE001 - only a hint depends on it
+        return ""
+    return stiffness_advice(method, rhs_system, t, y, t_end)
+
+
 def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
     """Run the compiled DOP853 path (the system's ``compiled_solver().run``) and wrap its records."""
     rtol = max(options.rtol, _RTOL_FLOOR)
@@ -195,7 +191,8 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
                           f"or an area many orders too large?) stop it") from None
     if status:  # the messages scipy's methods give
         state = system.describe(t, y)
-        stiff = stiffness_advice(options.method)
+        traj = _compiled_trajectory(system, fast, t0, recs, segs, evs, st) if len(segs) else None
+        stiff = _compiled_advice(system, fast, traj, rtol, t, y, stops[-1], options.method) if status < 3 else ""
         exc = SolverError({1: f"more than {options.max_steps} steps before t = {t:.9g} s; {state}{stiff}",
                            2: f"DOP853 stopped at t = {t:.9g} s: Required step size is less than spacing between "
                               f"numbers.; {state}{stiff}",
@@ -204,7 +201,7 @@ def _integrate_compiled(system, fast, y0, t0, stops, options) -> Trajectory:
                            5: f"switches keep firing at t = {t:.9g} s without progress; {state}",
                            6: f"more than max_wall = {options.max_wall:g} s of wall time before t = {t:.9g} s; "
                               f"{state}"}[status])
-        exc.trajectory = _compiled_trajectory(system, fast, t0, recs, segs, evs, st) if len(segs) else None
+        exc.trajectory = traj
         raise exc
     return _compiled_trajectory(system, fast, t0, recs, segs, evs, st)
 
@@ -280,7 +277,7 @@ def _watched(g, direction):
     return event
 
 
-def _step_budget(system, remaining: int, options, deadline: float):
+def _step_budget(system, remaining: int, options, deadline: float, stop: float):
     """A never-firing event: scipy evaluates it once per accepted step, so it counts the steps of one solve and
     stops a segment that exceeds the run's step budget or its wall-time ``deadline`` (solve_ivp has neither)."""
     count, last = [0], [-math.inf]
@@ -290,7 +287,7 @@ def _step_budget(system, remaining: int, options, deadline: float):
         last[0] = t
         if count[0] > remaining + 1:  # the first call is at the segment's start
             raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}"
-                              f"{stiffness_advice(options.method)}")
+                              f"{stiffness_advice(options.method, system, t, y, stop)}")
         if _time.perf_counter() > deadline:
             raise SolverError(f"more than max_wall = {options.max_wall:g} s of wall time before t = {t:.9g} s; "
                               f"{system.describe(t, y)}")
@@ -359,7 +356,7 @@ def _advance(system, t, y, stop, options, traj):
     remaining = options.max_steps - traj.stats["steps"]
     if remaining <= 0:
         raise SolverError(f"more than {options.max_steps} steps before t = {t:.9g} s; {system.describe(t, y)}")
-    budget = _step_budget(system, remaining, options, traj.deadline)
+    budget = _step_budget(system, remaining, options, traj.deadline, stop)
     try:
         sol = _solve(system, t, stop, y, options, traj, events + [budget])
     except (ArithmeticError, ValueError) as exc:
@@ -368,7 +365,8 @@ def _advance(system, t, y, stop, options, traj):
                           f"segment's start: {system.describe(t, y)}") from None
     if sol.status == -1:
         raise SolverError(f"{options.method} stopped at t = {sol.t[-1]:.9g} s: {sol.message}; "
-                          f"{system.describe(sol.t[-1], sol.y[:, -1])}{stiffness_advice(options.method)}")
+                          f"{system.describe(sol.t[-1], sol.y[:, -1])}"
+                          f"{stiffness_advice(options.method, system, sol.t[-1], sol.y[:, -1], stop)}")
     if not np.all(np.isfinite(sol.y[:, -1])):
         raise SolverError(f"non-finite state at t = {sol.t[-1]:.9g} s; {system.describe(sol.t[-1], sol.y[:, -1])}")
     st = traj.stats

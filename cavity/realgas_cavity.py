@@ -126,7 +126,8 @@ class RealGasCavity(Cavity):
 def _caution_condensable(name: str, fluid) -> None:
     caution(f"cavity {name}: the {fluid.name} mixture is below the critical temperature of {fluid.caution_component} "
             f"({fluid.caution_below:.1f} K): it is evaluated as a gas (phase imposed; only the initial state is "
-            "checked to be single-phase), condensation is not modelled")
+            "checked to be single-phase), condensation is not modelled: where its temperature history falls below that, "
+            "treat the results as an ideal-vapour estimate")
 
 
 @dataclass(slots=True)

@@ -14,6 +14,7 @@ import json
 import math
 import os
 import random
+import re
 import select
 import signal
 import sys
@@ -396,8 +397,31 @@ def _child(scene: Path, out: Path, wall: float) -> dict:
         return {"kind": _success_kind(out), "detail": text}
     errors = [ln for ln in text.splitlines() if ln.startswith("ventsim: error:")]
     if code == 2 and len(errors) == 1:
-        return {"kind": "clean error", "detail": errors[0]}
+        named = names_file_and_key(errors[0], scene)
+        return {"kind": "clean error" if named else "error without file or key", "detail": errors[0]}
     return {"kind": "traceback", "detail": f"exit {code}: {text}"}
+
+
+#: A key as an error names it: ``cavity[0].inflator[1].mass_flow``, ``time.end``, ``exchange``.
+_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(\[\d+\])?(\.[A-Za-z_0-9]+(\[\d+\])?)*")
+#: Errors about the file as a whole, which have no key to name (its line and column are named instead).
+_WHOLE_FILE = ("not valid TOML", "scene file", "is not UTF-8")
+
+
+def names_file_and_key(line: str, scene: Path) -> bool:
+    """True when the error line names the scene file and then a key (or is about the file as a whole).
+
+    >>> names_file_and_key("ventsim: error: s.toml: cavity[0].volume: 50 m^3 ...", Path("s.toml"))
+    True
+    >>> names_file_and_key("ventsim: error: the solver failed", Path("s.toml"))
+    False
+    """
+    head = f"ventsim: error: {scene}: "
+    if not line.startswith(head):
+        return False
+    rest = line[len(head):]
+    where = rest.split(": ", 1)[0]
+    return bool(_KEY.fullmatch(where)) or any(w in rest for w in _WHOLE_FILE)
 
 
 def _success_kind(out: Path) -> str:
@@ -524,7 +548,7 @@ def main() -> int:
         res = campaign(seed, count, Path(tmp), log=lambda s: print(s, flush=True), wall=wall, timeout=kill)
     c = res["counts"]
     print(f"seed {seed}, {count} mutations in {time.monotonic() - start:.0f} s: "
-          f"{c['traceback']} tracebacks, {c['hang']} hangs, {c['non-finite success']} non-finite successes, "
+          f"{c['traceback']} tracebacks, {c['error without file or key']} errors without file or key, {c['hang']} hangs, {c['non-finite success']} non-finite successes, "
           f"{c['clean error']} clean errors, {c['legal run']} legal runs; slowest run {res['max wall [s]']:.1f} s")
     bad = [f"{name}: {what}: {out['kind']}: {(out['detail'].strip().splitlines() or [''])[-1][:200]}"
            for name, what, out in res["bad"]]

@@ -454,7 +454,8 @@ def test_series_volume_is_exact_between_frames():
     s = MeshSeries(T, frames(x0), faces)
     vol = SeriesVolume.of(s.times, s.vertices, s.triangles())
     for t in np.linspace(-1e-3, 8e-3, 37):
-        assert vol(t) == pytest.approx(mesh_volume(s.at(t), faces), rel=1e-13)
+        # two sums of the same face terms in different orders: n·ε of the volume at most (terms of one sign)
+        assert vol(t) == pytest.approx(mesh_volume(s.at(t), faces), rel=len(faces) * np.finfo(float).eps)
         h = 1e-7
         if T[0] < t - h and t + h < T[-1] and not np.any(np.abs(T - t) < 2 * h):
             assert vol.rate(t) == pytest.approx((vol(t + h) - vol(t - h)) / (2 * h), rel=1e-6)

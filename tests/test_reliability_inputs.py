@@ -171,6 +171,22 @@ def mesh_scene(folder, mesh) -> dict:
     return data
 
 
+@pytest.mark.parametrize("bad", [7, -2])
+def test_a_face_that_indexes_a_missing_vertex(capsys, tmp_path, bad):
+    from cases.scene.ply import write_ply
+
+    s = trimesh.creation.icosphere(subdivisions=1, radius=0.1)
+    faces = np.array(s.faces)
+    faces[5, 2] = len(s.vertices) + bad if bad > 0 else bad
+    write_ply(tmp_path / "m.ply", s.vertices, faces)
+    data = tank()
+    data["cavity"][0].pop("volume")
+    data["cavity"][0]["mesh"] = "m.ply"
+    err = error_line(capsys, tmp_path, data)
+    assert err.startswith(f"cavity[0].mesh: 'm.ply': face 5 indexes vertices {faces[5].tolist()} but the mesh has "
+                          f"{len(s.vertices)} vertices"), err
+
+
 def test_a_mesh_without_faces(capsys, tmp_path):
     (tmp_path / "m.ply").write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                     "property float z\nelement face 0\nproperty list uchar int vertex_indices\n"
@@ -208,13 +224,19 @@ def test_a_nan_vertex(capsys, tmp_path):
     assert err == "cavity[0].mesh: 'm.ply': vertex 3 has a non-finite coordinate"
 
 
-def test_a_mesh_in_millimetres_is_warned(capsys, tmp_path):
+def test_a_mesh_in_millimetres_is_an_error_unless_meant(capsys, tmp_path):
     s = trimesh.creation.icosphere(subdivisions=2, radius=200.0)  # meant as 200 mm
-    scene = write(tmp_path, mesh_scene(tmp_path, s))
-    code, err = run_cli(capsys, scene, tmp_path / "out")
+    data = mesh_scene(tmp_path, s)
+    err = error_line(capsys, tmp_path, data)
+    assert err.startswith("cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3 and spans 692.82 m: coordinates in "
+                          "millimetres (then it encloses 0.0324 m^3)?"), err
+    data["units"] = {"unchecked": ["cavity[0].mesh"]}  # meant: a warning remains
+    code, err = run_cli(capsys, write(tmp_path, data), tmp_path / "out")
     assert code == 0
-    assert len(err) == 1 and err[0].startswith("ventsim: warning: cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3, spans 692.82 ")
-    assert err[0].endswith("m: coordinates look like millimetres (x 1e-3: 0.693 m); a mesh must be in metres")
+    assert len(err) == 1 and err[0].startswith("ventsim: warning: cavity[0].mesh: 'm.ply' encloses 3.23764e+07 m^3, "
+                                               "spans 692.82 ")
+    assert err[0].endswith("m: coordinates look like millimetres (x 1e-3: 0.693 m); a mesh must be in the scene's "
+                           "units: set [units] system = 'mm-t-s' or 'mm-kg-ms', or scale the mesh by 1e-3")
     import json
 
     assert json.loads((tmp_path / "out" / "summary.json").read_text())["warnings"] == [err[0][18:]]

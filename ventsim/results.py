@@ -1,9 +1,53 @@
 """The results of a run as a Python user wants them: a DataFrame history, a summary dict, a plot, files."""
 from __future__ import annotations
 
+import difflib
 from pathlib import Path
 
-__all__ = ["Results", "run"]
+import numpy as np
+
+__all__ = ["Results", "run", "UnknownColumn"]
+
+
+class UnknownColumn(KeyError):
+    """A history column that a run does not have; ``str()`` is one line with the closest names."""
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+def _bare(name: str) -> str:
+    """A column's name without its unit: ``"bag.pressure [Pa]"`` -> ``"bag.pressure"``."""
+    return name.split(" [")[0].strip()
+
+
+def resolve(columns, name) -> int:
+    """The index of the history column ``name``, given with its unit (``"bag.pressure [Pa]"``) or without it
+    (``"bag.pressure"``); :class:`UnknownColumn` naming the closest columns otherwise.
+
+    >>> resolve(["time [s]", "bag.pressure [Pa]"], "bag.pressure")
+    1
+    >>> resolve(["time [s]", "bag.pressure [Pa]"], "bag.presure [Pa]")
+    Traceback (most recent call last):
+    ...
+    ventsim.results.UnknownColumn: no history column 'bag.presure [Pa]' (did you mean 'bag.pressure [Pa]'?); columns: time [s], bag.pressure [Pa]
+    """
+    if not isinstance(name, str):
+        raise UnknownColumn(f"a history column is named by a string such as 'bag.pressure', got {name!r}")
+    columns = list(columns)
+    if name in columns:
+        return columns.index(name)
+    bare = [_bare(c) for c in columns]
+    if _bare(name) in bare:
+        i = bare.index(_bare(name))
+        if " [" not in name:
+            return i
+        raise UnknownColumn(f"history column {bare[i]!r} is in {columns[i][len(bare[i]):].strip()}, not in "
+                            f"{name[len(_bare(name)):].strip()}: name it {columns[i]!r} or {bare[i]!r}")
+    close = difflib.get_close_matches(name, columns, n=3, cutoff=0.6) or [
+        columns[bare.index(c)] for c in difflib.get_close_matches(_bare(name), bare, n=3, cutoff=0.6)]
+    hint = f" (did you mean {' or '.join(map(repr, close))}?)" if close else ""
+    raise UnknownColumn(f"no history column {name!r}{hint}; columns: {', '.join(columns)}")
 
 
 class Results:
@@ -39,19 +83,33 @@ class Results:
         return self.raw.summary
 
     def __getitem__(self, column: str):
-        """A history column as a NumPy array, by its full name or its name without the unit."""
-        if column in self.history.columns:
-            return self.history[column].to_numpy()
-        return self.raw.column(column)
+        """A history column as a NumPy array, by its full name (``"bag.pressure [Pa]"``) or without the unit
+        (``"bag.pressure"``); an unknown name raises :class:`UnknownColumn` (a KeyError) naming the closest."""
+        return self.raw.history[:, resolve(self.raw.columns, column)].copy()
 
-    def at(self, t: float, quantity: str) -> float:
-        """``quantity`` (``"pressure"``, ``"temperature"``, ``"mass"``, ``"volume"``) of the cavity named
-        ``"cavity.quantity"`` at any time t [s] on the solver's dense output, not only at the output times."""
-        cavity, what = quantity.split(".")
-        net, traj = self.raw.model.network, self.raw.trajectory
-        i = [c.name for c in net.cavities].index(cavity)
-        net.restore(traj.mode_at(t))
-        return float(getattr(net.states(t, traj(t))[i], what))
+    def at(self, t: float, column: str) -> float:
+        """The history column ``column`` (any name ``results[...]`` takes: ``"bag.pressure [Pa]"``,
+        ``"vent.mass_flow"``, ``"headform.displacement"``) at any time t [s] in the run, read from the solver's
+        dense output as the history rows are, not interpolated between them."""
+        index = resolve(self.raw.columns, column)
+        traj = self.raw.trajectory
+        if isinstance(t, bool) or not isinstance(t, (int, float, np.floating)) or not 0.0 <= t <= traj.t_final:
+            raise ValueError(f"t = {t!r} s is outside the run: give a time from 0 to {traj.t_final:.9g} s")
+        return float(self._row(float(t))[index])
+
+    def _row(self, t: float) -> np.ndarray:
+        """Every history column at time ``t``, computed as the runner computes the output rows."""
+        from cases.results.body_outputs import body_columns
+        from cases.results.history_outputs import engineering_columns
+        from cases.results.readback import history_columns, history_rows
+
+        model, traj = self.raw.model, self.raw.trajectory
+        rows = history_rows(model, traj, np.array([t]))
+        columns, rows = engineering_columns(model, traj, history_columns(model), rows)
+        bodies = body_columns(model, traj, rows[:, 0], set(columns))
+        if bodies:
+            rows = np.column_stack([rows] + [values for _, values in bodies])
+        return rows[0]
 
     def plot(self, path=None):
         """The history figure (pressure, gauge pressure, temperature, flows, vent area, ... against time):

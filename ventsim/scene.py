@@ -17,6 +17,7 @@ import numpy as np
 from cases.scene.errors import SceneError
 from cavity.tables import Table
 from cases.scene.files import load_scene, read_scene_data, scene_from_dict
+from cases.scene.ply import write_ply
 
 __all__ = ["Scene", "load"]
 
@@ -39,27 +40,15 @@ def _is_default(f, value) -> bool:
         return False
 
 
+def _is_rows(value) -> bool:
+    """A table given as a list of [x, y] rows of numbers (``[[0.0, 0.1], [0.05, 0.2]]``)."""
+    return (isinstance(value, (list, tuple)) and len(value) > 0
+            and all(isinstance(r, (list, tuple)) and len(r) == 2 and all(
+                isinstance(x, (int, float, np.number)) and not isinstance(x, bool) for x in r) for r in value))
+
+
 def _file_name(where: str, suffix: str) -> str:
     return "".join(c if c.isalnum() or c in "._-" else "_" for c in where).strip("_") + suffix
-
-
-def write_ply(path: Path, vertices, faces) -> None:
-    """A binary PLY with double-precision vertices (trimesh's own PLY export rounds them to float32).
-
-    Parameters
-    ----------
-    vertices : (n, 3) float
-        [m]
-    faces : (m, 3) or (m, 4) int
-    """
-    v, f = np.asarray(vertices, "<f8"), np.asarray(faces, "<i4")
-    header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\nproperty double x\n"
-              f"property double y\nproperty double z\nelement face {len(f)}\n"
-              "property list uchar int vertex_indices\nend_header\n")
-    cells = np.zeros(len(f), dtype=[("n", "u1"), ("i", "<i4", (f.shape[1],))])
-    cells["n"], cells["i"] = f.shape[1], f
-    with open(path, "wb") as fh:
-        fh.write(header.encode() + v.tobytes() + cells.tobytes())
 
 
 def _write_table(value, path: Path, where: str) -> None:
@@ -79,6 +68,8 @@ def _externalised(value, folder: Path, where: str):
         value = value.to_numpy()
     if isinstance(value, Table):  # a validated table (from another scene's spec)
         value = np.column_stack([value.x, value.y])
+    if _is_rows(value):  # a table as a list of [x, y] rows
+        value = np.asarray(value, dtype=np.float64)
     if isinstance(value, np.ndarray) and value.ndim == 2:
         path = folder / _file_name(where, ".csv")
         _write_table(value, path, where)
@@ -105,7 +96,7 @@ class Scene:
     data : dict, optional
         The scene as the dict a TOML file parses to (``{"time": {"end": 0.1}, "cavity": [...], ...}``). Any
         value may be a NumPy array of shape (n, 2) (a table: first column x, second y, in the key's units), a
-        pandas DataFrame of two columns, or a ``trimesh.Trimesh`` (a mesh, coordinates in metres) where the
+        list of [x, y] rows, a pandas DataFrame of two columns, or a ``trimesh.Trimesh`` (a mesh, coordinates in metres) where the
         TOML file would name a CSV or mesh file. Strings name files relative to ``base``. Objects are taken by
         their fields: the spec dataclasses of a loaded scene (``ventsim.load(path).spec.cavity[0]``, with its
         tables) or any dataclass whose fields are scene keys.

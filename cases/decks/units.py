@@ -1,66 +1,6 @@
-"""Unit systems of a deck: Abaqus and LS-DYNA have none, the numbers are in whatever consistent system the
-analyst chose. ``--units`` names it; every value read from a deck is multiplied by the factor of its quantity to
-give SI (temperatures are not converted: they are absolute, or shifted by *PHYSICAL CONSTANTS, ABSOLUTE ZERO).
-
-A system is the triple (length [m], mass [kg], time [s]); every other quantity's factor follows from its
-dimension exponents. The three systems offered are the common consistent sets of crash and airbag analysis.
-"""
+"""Unit systems of a deck (``--units``): the scene's own (:mod:`cases.scene.unit_systems`), one code for both."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from cases.scene.unit_systems import DIMENSIONS, SYSTEMS, UnitSystem, unit_system
 
-__all__ = ["UnitSystem", "SYSTEMS", "unit_system"]
-
-#: quantity -> exponents of (length, mass, time)
-DIMENSIONS = {
-    "length": (1, 0, 0), "area": (2, 0, 0), "volume": (3, 0, 0), "mass": (0, 1, 0), "time": (0, 0, 1),
-    "velocity": (1, 0, -1), "pressure": (-1, 1, -2), "density": (-3, 1, 0), "mass_flow": (0, 1, -1),
-    "mass_flux": (-2, 1, -1), "volume_flux": (1, 0, -1), "energy": (2, 1, -2),
-    "specific_heat": (2, 0, -2),  # J/(kg K)
-    "molar_mass": (0, 1, 0),  # mass per mol
-    "molar_heat": (2, 1, -2),  # J/(mol K): energy per mol and kelvin
-    "viscous_resistance": (-2, 1, -1),  # Pa s/m
-    "bulk_modulus": (-1, 1, -2), "acceleration": (1, 0, -2), "inverse_temperature": (0, 0, 0),
-    "dimensionless": (0, 0, 0),
-}
-
-
-@dataclass(frozen=True)
-class UnitSystem:
-    """A consistent unit system: the SI value of its unit of length, mass and time.
-
-    >>> unit_system("mm-t-s").factor("pressure")  # N/mm^2 = MPa
-    1000000.0
-    >>> unit_system("mm-kg-ms").factor("pressure")  # kN/mm^2 = GPa
-    1000000000.0
-    """
-
-    name: str
-    length: float
-    mass: float
-    time: float
-
-    def factor(self, quantity: str) -> float:
-        """SI value of one deck unit of ``quantity`` (a key of ``DIMENSIONS``)."""
-        a, b, c = DIMENSIONS[quantity]
-        return self.length ** a * self.mass ** b * self.time ** c
-
-    def si(self, value: float, quantity: str) -> float:
-        """``value`` in deck units converted to SI (exact for SI itself: the factor is 1.0)."""
-        f = self.factor(quantity)
-        return float(value) if f == 1.0 else float(value) * f
-
-
-SYSTEMS = {
-    "SI": UnitSystem("SI", 1.0, 1.0, 1.0),  # m, kg, s: N, Pa, J
-    "mm-t-s": UnitSystem("mm-t-s", 1e-3, 1e3, 1.0),  # mm, tonne, s: N, MPa, mJ
-    "mm-kg-ms": UnitSystem("mm-kg-ms", 1e-3, 1.0, 1e-3),  # mm, kg, ms: kN, GPa, J
-}
-
-
-def unit_system(name: str) -> UnitSystem:
-    """The system called ``name`` (KeyError with the known names otherwise)."""
-    try:
-        return SYSTEMS[name]
-    except KeyError:
-        raise KeyError(f"unknown unit system {name!r}; known: {', '.join(SYSTEMS)}") from None
+__all__ = ["UnitSystem", "SYSTEMS", "unit_system", "DIMENSIONS"]

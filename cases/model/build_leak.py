@@ -132,7 +132,8 @@ def _search(scene, j, field, n, knots):
                                                                   "raise limits.wall or coarsen the surface") from None
     if found.unresolved:
         caution(f"exchange {scene.exchange[j].name}: {found.unresolved} node intervals hover within the bound of the "
-                "contact tolerance and were not bisected further: a contact shorter than that may be missed there")
+                "contact tolerance and were not bisected further: a contact shorter than that may be missed there; if "
+                "the blocked area matters, rerun with contact_tolerance changed by a few per cent and compare")
     return found
 
 

@@ -59,7 +59,8 @@ def history_rows(model, traj: Trajectory, times, deadline: float = math.inf) -> 
     ok, rows = history(fast, traj, times, ycols)
     if not ok:
         warnings.warn(VentsimWarning("history: a cavity temperature could not be solved at some output time (the "
-                                     "row holds its first guess): check the history around sharp events"))
+                                     "row holds its first guess): check the history around sharp events, and rerun with a smaller "
+                                     "solver.rtol or time.output_interval to resolve them"))
     contact = contact_rows(model, traj, rows[:, 0], deadline) if contact_columns(model) else None
     return rows if contact is None else np.column_stack([rows, contact])
 

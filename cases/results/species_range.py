@@ -12,7 +12,8 @@ def _outside(species, names, what, t_min, t_max) -> list:
         lo, hi = s.valid_range
         if s.name in names and (t_min < lo or t_max > hi):
             out.append(f"{what} reached {t_min:.6g} to {t_max:.6g} K, outside the data range of species "
-                       f"{s.name!r} ({lo:g} to {hi:g} K): its cp is held at the end value there")
+                       f"{s.name!r} ({lo:g} to {hi:g} K): its cp is held at the end value there; for data over that range "
+                       "give [[species]] with coolprop = '<fluid>' (or cp coefficients valid there)")
     return out
 
 

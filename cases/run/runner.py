@@ -70,9 +70,16 @@ class RunError(SceneError, SolverError):
     temperature for an internal energy); ``partial`` holds the Results up to where it stopped, or None. It is a
     SceneError (one line for the user) and a SolverError (what the integrator raised)."""
 
-    def __init__(self, file, message: str, partial=None):
-        super().__init__(file, "", message)
+    def __init__(self, file, message: str, partial=None, where: str = ""):
+        super().__init__(file, where, message)
         self.partial = partial
+
+
+def _budget_key(message: str) -> str:
+    """The scene key of the budget a stopped run ran out of (``limits.wall``, ``limits.steps``), or ''."""
+    if "more than max_wall" in message:
+        return "limits.wall"
+    return "limits.steps" if message.startswith("more than ") and " steps before " in message else ""
 
 
 def run(model: Model, *, progress: bool = False, max_wall: float | None = None) -> Results:
@@ -89,7 +96,7 @@ def run(model: Model, *, progress: bool = False, max_wall: float | None = None) 
         except SolverError as exc:
             partial = _partial(model, options, exc)
             raise RunError(model.scene.path if model.scene._path else "<scene built in Python>",
-                           f"the run stopped: {exc}", partial) from None
+                           f"the run stopped: {exc}", partial, _budget_key(str(exc))) from None
     messages = unique_messages(model.warnings + [w for w in caught if issubclass(w.category, VentsimWarning)]
                                + species_range_warnings(model, results.history, results.columns))
     if messages:

@@ -16,7 +16,8 @@ SECTIONS = [("Top level", s.Scene, ""), ("[time]", s.TimeSpec, "time."), ("[solv
             ("[[cavity.wall_materials]]", s.WallMaterialSpec, "cavity.wall_materials."),
             ("[[exchange]]", s.ExchangeSpec, "exchange."), ("[[body]]", s.BodySpec, "body."),
             ("[[contact]]", s.ContactSpec, "contact."), ("[limits]", s.LimitsSpec, "limits."),
-            ("[blockage]", s.BlockageSpec, "blockage."), ("[fe_run]", s.FeRunSpec, "fe_run.")]
+            ("[blockage]", s.BlockageSpec, "blockage."), ("[fe_run]", s.FeRunSpec, "fe_run."),
+            ("[units]", s.UnitsSpec, "units.")]
 
 
 def key_reference() -> str:

@@ -22,9 +22,10 @@ from cases.scene.validate import register_specs, validate_scene
 from cases.scene.values import composition as _composition, cp_coefficients, names_list as _names, vector as _vector
 from cases.scene.tables_io import read_text, table_or_constant
 from cases.scene.walls import WallMaterialSpec
+from cases.scene.units import UnitsSpec, to_si
 
 __all__ = ["read_scene_data", "Scene", "BodySpec", "TimeSpec", "SolverSpec", "AmbientSpec", "SpeciesSpec", "CavitySpec", "InflatorSpec",
-           "ExchangeSpec", "ContactSpec", "LimitsSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
+           "ExchangeSpec", "ContactSpec", "LimitsSpec", "UnitsSpec", "load_scene", "ENERGY_MODELS", "LAWS", "INFLATOR_TYPES"]
 
 ENERGY_MODELS = ("adiabatic", "isothermal", "heat_loss", "wall")
 LAWS = law_keys.names()  # the law registry's (exchange.laws.registry)
@@ -280,6 +281,8 @@ class Scene:
     limits: LimitsSpec = key("[limits] table: work budgets", default=LimitsSpec())
     blockage: BlockageSpec = key("[blockage] table: an FE code's blockage rule", default=BlockageSpec())
     fe_run: FeRunSpec = key("[fe_run] table: the FE run replayed (units, abstat)", default=FeRunSpec())
+    units: UnitsSpec = key("[units] table: the scene's unit system and its plausibility checks",
+                           default=UnitsSpec())
     _path: str = ""
 
     @property
@@ -370,12 +373,13 @@ def scene_from_dict(data: dict, path) -> Scene:
         "limits": lambda v, w: parse(LimitsSpec, v, path, w),
         "blockage": lambda v, w: parse(BlockageSpec, v, path, w),
         "fe_run": lambda v, w: parse(FeRunSpec, v, path, w),
+        "units": lambda v, w: parse(UnitsSpec, v, path, w, nested={"unchecked": lambda u, x: _names(u, path, x, "key")}),
         "exchange": many(ExchangeSpec, {"leakage_box": vector(6), "blocked_by": names_list, "parts": part_ids(path),
                                         "amplitude": table("area amplitude [-]"),
                                         **{k.name: number_or_table(law_keys.label(k)) for k in law_keys.of_kind("cd")},
                                         **{k.name: table(law_keys.label(k)) for k in law_keys.of_kind("table")}}),
     })
-    scene = replace(scene, _path=str(path))
+    scene = to_si(replace(scene, _path=str(path)), path)
     validate_scene(scene, data)
     return scene
 
@@ -383,4 +387,4 @@ def scene_from_dict(data: dict, path) -> Scene:
 register_specs(Scene=Scene, TimeSpec=TimeSpec, SolverSpec=SolverSpec, AmbientSpec=AmbientSpec, LimitsSpec=LimitsSpec,
                SpeciesSpec=SpeciesSpec, CavitySpec=CavitySpec, InflatorSpec=InflatorSpec, ExchangeSpec=ExchangeSpec,
                BodySpec=BodySpec, ContactSpec=ContactSpec, WallMaterialSpec=WallMaterialSpec,
-               BlockageSpec=BlockageSpec, FeRunSpec=FeRunSpec)
+               BlockageSpec=BlockageSpec, FeRunSpec=FeRunSpec, UnitsSpec=UnitsSpec)

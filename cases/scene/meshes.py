@@ -36,6 +36,11 @@ def _facts(path: str, mtime_ns: int, size: int) -> dict:
     facts = {"faces": len(faces), "error": None}
     if not len(faces):
         return facts
+    wrong = np.flatnonzero(np.any((faces < 0) | (faces >= len(vertices)), axis=1))
+    if wrong.size:
+        k = int(wrong[0])
+        return {**facts, "error": f"face {k} indexes vertices {faces[k].tolist()} but the mesh has {len(vertices)} "
+                                  f"vertices (0 to {len(vertices) - 1}): the file is corrupt or truncated"}
     bad = np.flatnonzero(~np.all(np.isfinite(vertices), axis=1))
     if bad.size:
         facts["nonfinite"] = int(bad[0])
@@ -53,6 +58,7 @@ def _facts(path: str, mtime_ns: int, size: int) -> dict:
     signed = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0
     facts["shell_volumes"] = np.bincount(labels, weights=signed).tolist()
     facts["volume"] = float(signed.sum())
+    facts["area"] = float(0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1).sum())
     return facts
 
 
@@ -144,4 +150,5 @@ def _check_units(f: dict, where: str, name: str, closed: bool) -> None:
     if (closed and volume > MILLIMETRE_VOLUME) or extent > MILLIMETRE_EXTENT:
         size = f"encloses {volume:.6g} m^3, " if closed else ""
         caution(f"{where}: {name!r} {size}spans {extent:.6g} m: coordinates look like millimetres (x 1e-3: "
-                f"{extent * 1e-3:.3g} m); a mesh must be in metres")
+                f"{extent * 1e-3:.3g} m); a mesh must be in the scene's units: set [units] system = 'mm-t-s' or "
+                "'mm-kg-ms', or scale the mesh by 1e-3")

@@ -91,7 +91,7 @@ def read_table(path: Path, file, where: str, name: str, columns: int = 2) -> Tab
 
 
 def table_or_constant(value, base: Path, file, where: str, name: str) -> Table:
-    """A Table from a CSV file name, or a constant table from a number."""
+    """A Table from a CSV file name, a list of [x, y] rows, or a constant table from a number."""
     if isinstance(value, bool):
         raise SceneError(file, where, f"expected a number or a CSV file name, got {value!r}")
     if isinstance(value, (int, float)):
@@ -100,4 +100,18 @@ def table_or_constant(value, base: Path, file, where: str, name: str) -> Table:
         return Table((0.0,), (float(value),), name=name)
     if isinstance(value, str) and value:
         return read_table(base / value, file, where, name)
-    raise SceneError(file, where, f"expected a number or a CSV file name, got {value!r}")
+    if isinstance(value, list) and value and all(isinstance(r, list) for r in value):
+        return _rows_table(value, file, where, name)
+    raise SceneError(file, where, f"expected a number, a CSV file name or a list of [x, y] rows, got {value!r}")
+
+
+def _rows_table(rows: list, file, where: str, name: str) -> Table:
+    """A table given in the scene as a list of [x, y] rows (``[[0.0, 0.1], [0.05, 0.2]]``)."""
+    for k, r in enumerate(rows, start=1):
+        if len(r) != 2 or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                                  for v in r):
+            raise SceneError(file, where, f"row {k}: expected [x, y], two finite numbers, got {r!r}")
+    try:
+        return Table(tuple(float(r[0]) for r in rows), tuple(float(r[1]) for r in rows), name=name)
+    except TableError as exc:
+        raise SceneError(file, where, str(exc)) from None

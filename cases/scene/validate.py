@@ -24,6 +24,7 @@ from cases.scene.checks import check_cross_references
 from cases.scene.contact import check_contacts
 from cases.scene.blockage_rule import check_blockage
 from cases.scene.meshes import check_meshes
+from cases.scene.plausible import check_plausible
 from cases.scene.values import composition, cp_coefficients, names_list, table_value, vector
 from cases.scene.tables_io import read_table
 
@@ -80,7 +81,8 @@ def _validate(scene, raw) -> None:
     path = scene.path if scene._path else PYTHON_SCENE
     check_fields(scene, path, "")
     for name, cls in (("time", sc.TimeSpec), ("solver", sc.SolverSpec), ("ambient", sc.AmbientSpec),
-                      ("limits", sc.LimitsSpec), ("blockage", sc.BlockageSpec), ("fe_run", sc.FeRunSpec)):
+                      ("limits", sc.LimitsSpec), ("blockage", sc.BlockageSpec), ("fe_run", sc.FeRunSpec),
+                      ("units", sc.UnitsSpec)):
         _spec(getattr(scene, name), cls, path, name)
     for name, cls_name in _SPEC_LISTS.items():
         items = getattr(scene, name)
@@ -89,6 +91,11 @@ def _validate(scene, raw) -> None:
         for i, item in enumerate(items):
             _spec(item, SPECS[cls_name], path, f"{name}[{i}]")
     _values(scene, path)
+    if scene.units.system != "SI":
+        raise SceneError(path, "units.system", f"a Scene made of spec dataclasses holds SI values, got "
+                                               f"{scene.units.system!r}: give the unit system in the TOML file or "
+                                               "to ventsim.Scene({..., 'units': {'system': ...}}), which convert")
+    names_list(scene.units.unchecked, path, "units.unchecked", "key")
     _sanity(scene, path)
     check_cross_references(scene, path)
     if any(c.fluid == "real_gas" or c.energy == "wall" or any(i.tank_gas == "real_gas" for i in c.inflator)
@@ -101,6 +108,7 @@ def _validate(scene, raw) -> None:
     _budgets(scene, path)
     _held_tables(scene, path)
     check_meshes(scene, path)
+    check_plausible(scene, path)
 
 
 def _spec(obj, cls, path, where) -> None:
@@ -255,7 +263,8 @@ def _held_tables(scene, path) -> None:
             continue  # the gas temperature after the inflator stopped flowing does not matter
         if start + table.x[-1] < end and table.y[-1] != 0.0:
             caution(f"{where}: the table ends at {start + table.x[-1]:.6g} s, before time.end = {end:.6g} s: its "
-                    f"last value {table.y[-1]:.6g} is held from there")
+                    f"last value {table.y[-1]:.6g} is held from there; extend the table to time.end (or end it with 0) "
+                    "if that is not meant")
 
 
 def _inflator(scene, where: str):

@@ -121,6 +121,7 @@ def test_a_failing_hosted_state_stops_with_its_reason(tmp_path):
     head = head.replace('method = "LSODA"', 'method = "DOP853"').replace(
         "pressure = 101300.0\ntemperature = 288.0", "pressure = 101300.0\ntemperature = 20.0")
     path = tmp_path / "n2_cold.toml"
+    head = head.replace("[time]", '[units]\nunchecked = ["ambient.temperature"]  # meant\n\n[time]', 1)
     path.write_text(head + 'energy = "heat_loss"\nheat_transfer_coefficient = 1.0e6\nheat_transfer_area = 10.0\n\n'
                     + cavity[cavity.index("[[exchange]]"):])
     scene = load_scene(path)

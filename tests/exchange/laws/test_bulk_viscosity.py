@@ -95,4 +95,7 @@ def test_two_isothermal_tanks_exchange_mass_exponentially():
     transferred = m0[0] - sol.sol(t)[0]
     exact = (2.0e5 / (R * T * (1.0 / V1 + 1.0 / V2))) * (1.0 - np.exp(-k * t))
     np.testing.assert_allclose(transferred[1:], exact[1:], rtol=1e-9)
-    np.testing.assert_allclose(sol.sol(t).sum(axis=0), m0.sum(), rtol=1e-14)
+    # the flows are equal and opposite, so the total changes by round-off only: about ε per step and a few ε in the
+    # dense output (a bound that does not depend on how many steps a scipy version takes)
+    steps = len(sol.t)
+    np.testing.assert_allclose(sol.sol(t).sum(axis=0), m0.sum(), rtol=4 * (steps + 1) * np.finfo(float).eps)

@@ -1,0 +1,266 @@
+"""Plausibility of a scene's dimensional values (in SI, after :mod:`cases.scene.units`): the unit mistakes that
+would otherwise run silently or for minutes, each a one-line :class:`SceneError` naming the file, the key, the
+value and the likely mistake.
+
+- an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure);
+- a gas temperature below 150 K (a temperature in °C) or above 10,000 K;
+- an exchange or inflator orifice area larger than twice its cavity's mesh surface, or (a cavity given by its
+  volume) a thousand times the surface of a sphere of that volume (an area in mm² or cm²);
+- a cavity volume above 100 m³; or of 1 m³ or more whose inflators add less than 0.1 % of the gas it holds, or
+  that only vents and whose vents would take more than 1000 times ``time.end`` to relieve it (litres or mm³);
+- a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
+  tolerance above 1 m (millimetres).
+
+``[units] check = false`` turns them off; ``[units] unchecked = ["cavity[0].pressure"]`` exempts keys.
+"""
+from __future__ import annotations
+
+import math
+
+from cavity.tables import Table
+
+from cases.scene.errors import SceneError
+from cases.scene.unit_systems import SYSTEMS
+
+__all__ = ["check_plausible", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT", "MIN_INFLATED"]
+
+#: Lowest absolute pressure [Pa], gas temperature [K], largest cavity volume [m^3] and mesh or body extent [m]
+#: a scene may give without an explicit override; least share of a cavity's gas its inflators must add [-].
+MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT, MIN_INFLATED = 1e3, 150.0, 100.0, 50.0, 1e-3
+MAX_TOLERANCE = 1.0
+#: Most vent time constants in time.end of a cavity that only vents (the library's scenes: 12 at most).
+MAX_VENT_TIMES = 1e3
+#: Cavities of at least this volume [m^3] are checked against their inflators and vents (a short preview of a
+#: small vessel is not a mistake).
+MIN_VENTED_VOLUME = 1.0
+#: Surface of a sphere of volume V is SPHERE·V^(2/3), the least surface that can enclose V.
+SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
+#: An area may be at most this many times its cavity's mesh surface, or the surface of a sphere of its volume (a
+#: flat cavity, a seal's gap 1e-5 of its width, has 1000 times the sphere's surface).
+MESH_AREA_FACTOR, SPHERE_AREA_FACTOR = 2.0, 1000.0
+#: Highest gas temperature [K] and lowest molar mass [kg/mol] (atomic hydrogen: 1.008e-3) taken without override.
+MAX_TEMPERATURE, MIN_MOLAR_MASS = 1e4, 1e-3
+_R_AIR = 287.05  # J/(kg K), for the order of magnitude of a cavity's gas mass
+
+
+class _Checker:
+    def __init__(self, scene, path):
+        self.scene, self.path, self.units = scene, path, scene.units
+        self.system = SYSTEMS.get(scene.units.given or "SI", SYSTEMS["SI"])
+
+    def fail(self, where: str, message: str) -> None:
+        if where in self.units.unchecked:
+            return
+        raise SceneError(self.path, where, f"{message}; if it is meant, add {where!r} to [units] unchecked (or "
+                                           "set [units] check = false)")
+
+    def given(self, value: float, exps: tuple, unit: str) -> str:
+        """The value as the file gave it (in its unit system) and in SI."""
+        if self.system.name == "SI":
+            return f"{value:.6g} {unit}"
+        return f"{value / self.system.scale(exps):.6g} in {self.system.name} ({value:.6g} {unit})"
+
+
+def check_plausible(scene, path) -> None:
+    """SceneError on the first implausible dimensional value of ``scene`` (see the module's list)."""
+    if not scene.units.check:
+        return
+    c = _Checker(scene, path)
+    _pressures(c)
+    _temperatures(c)
+    volumes = _volumes(c)
+    _areas(c, volumes)
+    _inflated(c, volumes)
+    _lengths(c)
+    _coefficients(c)
+
+
+def _pressures(c: _Checker) -> None:
+    items = [("ambient.pressure", c.scene.ambient.pressure)]
+    items += [(f"cavity[{i}].pressure", cav.pressure) for i, cav in enumerate(c.scene.cavity)]
+    for where, p in items:
+        if p < MIN_PRESSURE:
+            c.fail(where, f"{c.given(p, (-1, 1, -2), 'Pa')} is below 1 kPa absolute: a pressure in bar ({p:g} bar = "
+                          f"{p * 1e5:.6g} Pa) or MPa ({p * 1e6:.6g} Pa), or a gauge pressure? Pressures are absolute "
+                          "[Pa]")
+
+
+def _temperatures(c: _Checker) -> None:
+    items = [("ambient.temperature", c.scene.ambient.temperature)]
+    for i, cav in enumerate(c.scene.cavity):
+        if cav.fluid == "gas":
+            items.append((f"cavity[{i}].temperature", cav.temperature))
+        for j, inf in enumerate(cav.inflator):
+            T = inf.temperature
+            if T is not None:
+                items.append((f"cavity[{i}].inflator[{j}].temperature", min(T.y) if isinstance(T, Table) else T))
+            if inf.tank_temperature:
+                items.append((f"cavity[{i}].inflator[{j}].tank_temperature", inf.tank_temperature))
+    for where, T in items:
+        if T > MAX_TEMPERATURE:
+            c.fail(where, f"{T:.6g} K is above {MAX_TEMPERATURE:g} K, hotter than any gas here: a typo?")
+        if T < MIN_TEMPERATURE:
+            c.fail(where, f"{T:.6g} K is below {MIN_TEMPERATURE:g} K: a temperature in °C ({T:g} °C = "
+                          f"{T + 273.15:.6g} K)? Temperatures are absolute [K]")
+
+
+def _volumes(c: _Checker) -> list:
+    """Each cavity's initial volume [m^3] (None when it is not known before building), checked against
+    MAX_VOLUME."""
+    from cases.scene.meshes import SERIES_SUFFIXES, mesh_facts
+
+    out = []
+    for i, cav in enumerate(c.scene.cavity):
+        where, v, surface = f"cavity[{i}].volume", cav.volume or None, None
+        if cav.mesh and not str(cav.mesh).lower().endswith(SERIES_SUFFIXES) and (c.scene.base / cav.mesh).is_file():
+            facts = mesh_facts(c.scene.base / cav.mesh)
+            where, v = f"cavity[{i}].mesh", abs(facts.get("volume", 0.0)) or None
+            surface = facts.get("area")
+            if facts.get("extent", 0.0) > MAX_EXTENT or (v or 0.0) > MAX_VOLUME:
+                c.fail(where, f"{cav.mesh!r} encloses {v or 0.0:.6g} m^3 and spans {facts.get('extent', 0.0):.6g} m: "
+                              f"coordinates in millimetres (then it encloses {(v or 0.0) * 1e-9:.3g} m^3)? "
+                              "Meshes are in the "
+                              "scene's units (set [units] system = 'mm-t-s' or 'mm-kg-ms', or scale the mesh)")
+        elif cav.volume_table and (c.scene.base / cav.volume_table).is_file():
+            from cases.scene.tables_io import read_table
+
+            where = f"cavity[{i}].volume_table"
+            v = read_table(c.scene.base / cav.volume_table, c.path, where, "volume_table").y[0] or None
+        elif v is not None and v > MAX_VOLUME:
+            c.fail(where, f"{c.given(v, (3, 0, 0), 'm^3')} is above {MAX_VOLUME:g} m^3: a volume in litres ({v:g} L = "
+                          f"{v * 1e-3:.6g} m^3) or mm^3? Volumes are in m^3")
+        out.append((where, None if v is None else v + cav.added_volume, surface))
+    return out
+
+
+def _areas(c: _Checker, volumes: list) -> None:
+    """An orifice cannot be larger than the whole surface of the cavity it leaves."""
+    index = {cav.name: i for i, cav in enumerate(c.scene.cavity)}
+    items = []
+    for j, e in enumerate(c.scene.exchange):
+        ends = [index[n] for n in (e.from_, e.to) if n in index]
+        for k in ("area", "effective_area"):
+            a = getattr(e, k)
+            if a:
+                items.append((f"exchange[{j}].{k}", a, ends))
+    for i, cav in enumerate(c.scene.cavity):
+        for j, inf in enumerate(cav.inflator):
+            if inf.orifice_area:
+                items.append((f"cavity[{i}].inflator[{j}].orifice_area", inf.orifice_area, [i]))
+    for where, a, ends in items:
+        known = [(volumes[i][1], volumes[i][2], c.scene.cavity[i].name) for i in ends if volumes[i][1]]
+        if not known:
+            continue
+        v, surface, name = max(known, key=lambda k: (k[2] is not None, k[0]))
+        if surface:  # a mesh: a vent is a hole in it (a fabric's leaking area at most all of it)
+            bound, what = MESH_AREA_FACTOR * surface, f"{MESH_AREA_FACTOR:g} times the mesh surface of cavity {name!r}"
+        else:  # a volume only: the least surface that holds it is a sphere's, a flat cavity has much more
+            bound = SPHERE_AREA_FACTOR * SPHERE * v ** (2.0 / 3.0)
+            what = f"{SPHERE_AREA_FACTOR:g} times the surface of a sphere of cavity {name!r}'s volume"
+        if a > bound:
+            c.fail(where, f"{c.given(a, (2, 0, 0), 'm^2')} is larger than {what} ({v:.3g} m^3; bound "
+                          f"{bound:.3g} m^2): an "
+                          f"area in mm^2 ({a:g} mm^2 = {a * 1e-6:.6g} m^2) or cm^2 ({a * 1e-4:.6g} m^2)? Areas are "
+                          "in m^2")
+
+
+def _inflated(c: _Checker, volumes: list) -> None:
+    """A cavity of MIN_VENTED_VOLUME or more filled by inflators whose whole gas would not change its pressure, or
+    vented orders of magnitude too slowly for time.end: its volume is orders too large."""
+    end = c.scene.time.end
+    for i, cav in enumerate(c.scene.cavity):
+        where, v, _ = volumes[i]
+        if cav.fluid != "gas" or not v or v < MIN_VENTED_VOLUME:
+            continue  # a short preview of a small cavity is not a mistake
+        if not cav.inflator:
+            _vented(c, cav, where, v)
+            continue
+        added = 0.0
+        for inf in cav.inflator:
+            if inf.type != "mass_temperature" or inf.mass_flow is None:
+                added = math.inf  # the other types' mass is not known before the run
+                break
+            last = inf.mass_flow.x[-1] if isinstance(inf.mass_flow, Table) else 0.0
+            added += inf.scale * _integral(inf.mass_flow, max(end - inf.start, last))
+        held = cav.pressure * v / (_R_AIR * cav.temperature)
+        if added < MIN_INFLATED * held:
+            c.fail(where, f"{v:.6g} m^3 holds about {held:.3g} kg of gas and its inflators add {added:.3g} kg in all "
+                          f"({added / held:.2%}): a volume in litres ({v:g} L = {v * 1e-3:.6g} m^3) or "
+                          "mm^3? Volumes are in m^3")
+
+
+def _vented(c: _Checker, cav, where: str, v: float) -> None:
+    """A cavity that only vents, whose vents would take more than MAX_VENT_TIMES·time.end to relieve it (time
+    constant V/(Cd·A·c₀), Cd 0.6, air's speed of sound): its volume is orders too large for the scene."""
+    area = sum(e.effective_area or e.area for e in c.scene.exchange if cav.name in (e.from_, e.to)
+               and not e.leakage_table and e.law in ("orifice", "fabric_leakage"))
+    if not area or any(cav.name == e.from_ and (e.pop_pressure or e.open_time)
+                                                for e in c.scene.exchange):
+        return
+    tau = v / (0.6 * area * math.sqrt(1.4 * _R_AIR * cav.temperature))
+    if tau > MAX_VENT_TIMES * c.scene.time.end:
+        c.fail(where, f"{v:.6g} m^3 would take about {tau:.3g} s to vent through {area:.3g} m^2, "
+                      f"{tau / c.scene.time.end:.3g} times time.end: a volume in litres ({v:g} L = {v * 1e-3:.6g} "
+                      "m^3) or mm^3? Volumes are in m^3")
+
+
+def _integral(rate, span: float) -> float:
+    """∫₀^span of a number or a Table (held beyond its ends) [kg]."""
+    if not isinstance(rate, Table):
+        return float(rate) * span
+    xs = [x for x in rate.x if 0.0 < x < span]
+    pts = [0.0] + xs + [span]
+    return sum(0.5 * (rate(a) + rate(b)) * (b - a) for a, b in zip(pts[:-1], pts[1:]))
+
+
+def _lengths(c: _Checker) -> None:
+    from cases.scene.meshes import _mesh_files, mesh_facts
+
+    for where, name, closed in _mesh_files(c.scene):
+        extent = mesh_facts(c.scene.base / name).get("extent", 0.0) if not closed else 0.0
+        if extent > MAX_EXTENT:
+            c.fail(where, f"{name!r} spans {extent:.6g} m: coordinates in millimetres (x 1e-3: {extent * 1e-3:.3g} m)? "
+                          "Meshes are in the scene's units (set [units] system = 'mm-t-s' or 'mm-kg-ms', or scale "
+                          "the mesh)")
+    for i, b in enumerate(c.scene.body):
+        if b.sphere and 2 * b.sphere[3] > MAX_EXTENT:
+            c.fail(f"body[{i}].sphere", f"radius {c.given(b.sphere[3], (1, 0, 0), 'm')} is wider than {MAX_EXTENT:g} "
+                                        "m: millimetres? Lengths are in m")
+        if b.box and max(b.box[3:]) > MAX_EXTENT:
+            c.fail(f"body[{i}].box", f"extent {c.given(max(b.box[3:]), (1, 0, 0), 'm')} is wider than "
+                                     f"{MAX_EXTENT:g} m: millimetres? Lengths are in m")
+    for j, e in enumerate(c.scene.exchange):
+        if e.leakage_box and max(e.leakage_box[3 + d] - e.leakage_box[d] for d in range(3)) > MAX_EXTENT:
+            c.fail(f"exchange[{j}].leakage_box", f"spans more than {MAX_EXTENT:g} m: millimetres? Lengths are in m")
+        if e.contact_tolerance > MAX_TOLERANCE:
+            c.fail(f"exchange[{j}].contact_tolerance", f"{c.given(e.contact_tolerance, (1, 0, 0), 'm')} is above "
+                                                       f"{MAX_TOLERANCE:g} m: millimetres? Lengths are in m")
+
+
+#: Largest molar mass [kg/mol], molar cp at 300 K [J/(mol K)] and discharge coefficient [-] taken without override.
+MAX_MOLAR_MASS, MAX_MOLAR_CP, MAX_CD = 1.0, 1000.0, 10.0
+
+
+def _coefficients(c: _Checker) -> None:
+    for i, sp in enumerate(c.scene.species):
+        if 0.0 < sp.molar_mass < MIN_MOLAR_MASS:
+            c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is below {MIN_MOLAR_MASS:g} kg/mol, "
+                                               "lighter than a hydrogen atom: a typo?")
+        if sp.molar_mass > MAX_MOLAR_MASS:
+            c.fail(f"species[{i}].molar_mass", f"{sp.molar_mass:.6g} kg/mol is above {MAX_MOLAR_MASS:g} kg/mol: "
+                                               f"in g/mol "
+                                               f"({sp.molar_mass:g} g/mol = {sp.molar_mass * 1e-3:.6g} kg/mol)?")
+        if sp.cp:
+            a = tuple(sp.cp) + (0.0,) * (6 - len(sp.cp))
+            T = 300.0
+            cp = a[0] + a[1] * T + a[2] * T ** 2 + a[3] * T ** 3 + a[4] / T ** 2 + a[5] * T ** 4
+            if not 0.0 < cp <= MAX_MOLAR_CP:
+                c.fail(f"species[{i}].cp", f"gives cp = {cp:.6g} J/(mol K) at 300 K, expected 0 to {MAX_MOLAR_CP:g}: "
+                                           "per kg instead of per mol (multiply by the molar mass), or a coefficient "
+                                           "of the wrong power of T?")
+    for j, e in enumerate(c.scene.exchange):
+        cd = getattr(e, "discharge_coefficient", None)
+        top = max(cd.y) if isinstance(cd, Table) else cd
+        if isinstance(top, float) and top > MAX_CD:
+            c.fail(f"exchange[{j}].discharge_coefficient", f"{top:.6g} is above {MAX_CD:g}: a discharge coefficient "
+                                                           "is at most about 1 (the ideal flow)")
