@@ -19,7 +19,7 @@ bisected further, its crossings found so far are kept, and it is counted in ``un
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -42,9 +42,10 @@ class SearchBudget(RuntimeError):
 class Crossings:
     """Contact changes of n nodes on [lo, hi]: ``initial`` (n,) bool active at lo; ``theta`` (c,) sorted, the
     node (c,) and its state after (c,) bool; ``resolution`` h_min; ``evaluations`` gap queries made;
-    ``unresolved`` sub-intervals of (node, knot interval) pairs left unbisected under :data:`MAX_LEAVES` though
-    the bound could not settle them (a graze may hide there; grazes shorter than h_min are within the guarantee
-    and not counted)."""
+    ``unresolved`` sub-intervals of (node, knot interval) pairs left unbisected under :data:`MAX_LEAVES` that no
+    closed form could solve either, ``uncertain`` (n,) their total length per node [θ] (the node's state is not
+    certified there: at most its weight times that much blocked area·θ is at stake; a contact shorter than h_min
+    elsewhere is within the guarantee and not counted)."""
 
     initial: np.ndarray
     theta: np.ndarray
@@ -53,6 +54,7 @@ class Crossings:
     resolution: float
     evaluations: int = 0
     unresolved: int = 0
+    uncertain: np.ndarray | None = None
 
     def active_at(self, theta: float) -> np.ndarray:
         """(n,) bool: active nodes at θ (right limit at a crossing)."""
@@ -63,7 +65,7 @@ class Crossings:
 
 
 def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLUTION,
-                        deadline: float = np.inf) -> Crossings:
+                        deadline: float = np.inf, exact=None) -> Crossings:
     """All crossings of f_i(θ) = 0 for nodes i < n on [knots[0], knots[-1]].
 
     Parameters
@@ -80,6 +82,11 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         h_min as a fraction of the range.
     deadline : float
         ``time.perf_counter()`` after which :class:`SearchBudget` is raised (checked once per level).
+    exact : callable (j, nodes (k,), in at knots[j] (k,) bool, in at knots[j+1] (k,) bool) -> (θ, node, state)
+        or None, optional
+        Every crossing of those nodes on knot interval j, solved in closed form (:mod:`cases.model.exact_crossings`);
+        asked for the (node, knot interval) pairs the bound cannot settle (their gap hovers near the tolerance).
+        None, or no callable: those pairs are reported in ``uncertain``.
     """
     knots = np.asarray(knots, dtype=float)
     h_min = resolution * (knots[-1] - knots[0])
@@ -93,7 +100,7 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
     origin = np.arange(node.size)
     L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
         if len(knots) > 1 else np.zeros(0)
-    brackets, unresolved = [], 0
+    brackets, solved, uncertain, unresolved = [], [], np.zeros(n), 0
     while a.size:
         if time.perf_counter() > deadline or a.size > MAX_PENDING:
             raise SearchBudget(f"{a.size} node intervals still unsettled after {evaluations} gap evaluations")
@@ -103,10 +110,13 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         leaf = ~settled & (h <= h_min)
         change = leaf & ((fa <= 0) != (fb <= 0))
         if change.any():
-            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
+            brackets.append((a[change], b[change], fa[change], fb[change], node[change], origin[change]))
         split = ~settled & ~leaf
-        stuck = _crowded(split, origin, (a, b, fa, fb, node), brackets)
-        unresolved += int(np.count_nonzero(stuck & ((fa <= 0) == (fb <= 0))))
+        stuck = _crowded(split, origin)
+        if stuck.any():
+            left = _settle_stuck(stuck, (a, b, fa, fb, node, origin), F <= 0, n, exact, brackets, solved)
+            unresolved += int(np.count_nonzero(left))
+            np.add.at(uncertain, node[left], h[left])
         split &= ~stuck
         a, b, fa, fb, node, L, origin = (v[split] for v in (a, b, fa, fb, node, L, origin))
         if not a.size:
@@ -117,31 +127,54 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         a, b = np.concatenate([a, m]), np.concatenate([m, b])
         fa, fb = np.concatenate([fa, fm]), np.concatenate([fm, fb])
         node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
-    return _located(F[0] <= 0, brackets, excess, h_min, evaluations, unresolved)
+    found = _located(F[0] <= 0, brackets, solved, excess, h_min, evaluations, n)
+    return replace(found, unresolved=unresolved, uncertain=uncertain)
 
 
-def _crowded(split, origin, arrays, brackets) -> np.ndarray:
+def _crowded(split, origin) -> np.ndarray:
     """(k,) bool: the intervals of (node, knot interval) pairs holding more than MAX_LEAVES unsettled ones (their
-    gap hovers at the tolerance): not bisected further; those whose ends differ go to ``brackets``."""
+    gap hovers at the tolerance): not bisected further."""
     count = np.bincount(origin[split], minlength=int(origin.max()) + 1 if origin.size else 0)
-    stuck = split & (count > MAX_LEAVES)[origin]
-    if stuck.any():
-        a, b, fa, fb, node = arrays
-        change = stuck & ((fa <= 0) != (fb <= 0))
-        if change.any():
-            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
-    return stuck
+    return split & (count > MAX_LEAVES)[origin]
 
 
-def _located(initial, brackets, excess, h_min, evaluations, unresolved) -> Crossings:
-    if not brackets:
-        empty = np.zeros(0)
-        return Crossings(initial, empty, empty.astype(np.int64), empty.astype(bool), h_min, evaluations, unresolved)
-    a, b, fa, fb, node = (np.concatenate(parts) for parts in zip(*brackets))
-    roots, calls = batched_roots(excess, node, a, b, fa, fb)
-    order = np.lexsort((node, roots))
-    return Crossings(initial, roots[order], node[order], (fb <= 0)[order], h_min, evaluations + calls, unresolved)
+def _settle_stuck(stuck, arrays, inside, n, exact, brackets, solved) -> np.ndarray:
+    """Hand the stuck (node, knot interval) pairs to ``exact``; (k,) bool: the stuck intervals it could not solve
+    (their brackets are kept, their length counted as uncertain)."""
+    a, b, fa, fb, node, origin = arrays
+    left = stuck.copy()
+    if exact is not None:
+        pairs = np.unique(origin[stuck])
+        for j in np.unique(pairs // n):
+            ids = pairs[pairs // n == j] % n
+            got = exact(int(j), ids, inside[j, ids], inside[j + 1, ids])
+            if got is not None:
+                theta, who, state = got
+                solved.append((theta, who, state, np.full(len(theta), int(j)), j * n + ids))
+                left &= ~np.isin(origin, j * n + ids)
+    change = left & ((fa <= 0) != (fb <= 0))
+    if change.any():
+        brackets.append((a[change], b[change], fa[change], fb[change], node[change], origin[change]))
+    return left
 
+
+def _located(initial, brackets, solved, excess, h_min, evaluations, n) -> Crossings:
+    empty = np.zeros(0)
+    theta, node, state, key = empty, empty.astype(np.int64), empty.astype(bool), empty.astype(np.int64)
+    calls = 0
+    if brackets:
+        a, b, fa, fb, node, origin = (np.concatenate(parts) for parts in zip(*brackets))
+        if solved:  # brackets found before a pair was solved exactly: the exact answer replaces them
+            keep = ~np.isin(origin, np.concatenate([s[4] for s in solved]))
+            a, b, fa, fb, node, origin = (v[keep] for v in (a, b, fa, fb, node, origin))
+        theta, calls = batched_roots(excess, node, a, b, fa, fb)
+        state, key = fb <= 0, origin // max(n, 1)
+    if solved:
+        theta, node, state, key = (np.concatenate([x] + [s[i] for s in solved])
+                                   for i, x in enumerate((theta, node, state, key)))
+    order = np.lexsort((node, key, theta))  # same θ: a knot's end before the next interval's start
+    return Crossings(initial, theta[order], node[order].astype(np.int64), state[order].astype(bool), h_min,
+                     evaluations + calls)
 
 def batched_roots(excess, nodes, a, b, fa, fb, iterations=200):
     """Roots of f_i(θ) = 0 in brackets [a, b] with f(a), f(b) of opposite states, many pairs at once (Illinois

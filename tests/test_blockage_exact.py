@@ -1,0 +1,106 @@
+"""Contact intervals in closed form: a blade sliding over a vent with its gap inside the tolerance, brief contacts
+at any gap, the segment-against-triangle intervals against brute force, and contact at gap 0."""
+import math
+
+import numpy as np
+import pytest
+
+from cases.model.build import build_model
+from cases.model.segment_contact import triangle_intervals
+from cases.scene.files import scene_from_dict
+from tests.scenes import tank
+from tests.test_blockage_over_time import _node_weights, grid_vent, track_blocked_area_time
+
+TOL = 30e-6  # contact tolerance [m]
+
+
+def blade_scene(folder, gap, length, speed=1.0, vent="vent.obj", rows=20001, nodes=None):
+    """A box ``length`` [m] long in x, 40 mm wide, its underside ``gap`` [m] above the 20 mm vent in z = 0,
+    sliding along +x at ``speed`` [m/s] so that its centre passes x = 0.01 m at t = 0.5 s (run 1 s)."""
+    data = tank(pressure=2.0e5)
+    data["time"] = {"end": 1.0, "output_interval": 1.0 / (rows - 1)}
+    start = 0.01 - 0.5 * speed
+    data["body"] = [{"name": "blade", "box": [start, 0.01, gap + 0.001, length, 0.04, 0.002], "axis": [1, 0, 0],
+                     "velocity": speed}]
+    where = {"leakage_nodes": nodes} if nodes else {"leakage_surface": vent}
+    data["exchange"] = [{"name": "vent", "from": "tank", **where, "blocked_by": ["blade"],
+                         "contact_tolerance": TOL, "effective_area": 1e-4}]
+    return scene_from_dict(data, folder / "scene.toml")
+
+
+def blade_reference(x, box_lo, box_hi, gap, speed):
+    """Exact contact interval [t_in, t_out] [s] of a node at x under the sliding box (its x range at t = 0 is
+    [box_lo, box_hi], moved by speed·t): |x − box| ≤ √(tol² − gap²) in x, as the underside is flat."""
+    reach = math.sqrt(TOL ** 2 - gap ** 2)
+    return (x - box_hi - reach) / speed, (x - box_lo + reach) / speed
+
+
+def test_a_blade_sliding_within_the_tolerance_blocks_what_brute_force_does(tmp_path):
+    grid_vent(tmp_path / "vent.obj", n=10)
+    gap, length = 18e-6, 1e-4
+    model = build_model(blade_scene(tmp_path, gap, length))
+    assert not any("not certified" in str(w) or "hover" in str(w) for w in model.warnings)
+    track = model.network.areas[0].track
+    surface, _ = model.geometry["surfaces"][0]
+    box = model.geometry["bodies"]["blade"][1].vertices[:, 0]
+    t_in, t_out = blade_reference(surface.vertices[:, 0], box.min(), box.max(), gap, 1.0)
+    reference = float(np.sum(_node_weights(surface) * (t_out - t_in)))  # every node in contact once
+    assert track.source.unresolved == 0
+    assert track_blocked_area_time(track, 1.0) == pytest.approx(reference, rel=1e-6)
+    assert 1e-4 < (t_out - t_in).min() < 2e-4  # each node in contact for about 1e-4 of the run
+
+
+@pytest.mark.parametrize("gap", [0.0, 18e-6, TOL * (1 - 1e-6), TOL * (1 - 1e-12)])
+def test_a_brief_contact_while_sliding_parallel_is_found_and_timed(tmp_path, gap):
+    """One node; the blade's contact with it lasts 1e-6 of the 1 s run whatever its gap below the tolerance."""
+    (tmp_path / "node.csv").write_text("x,y,z\n0.01,0.01,0.0\n")
+    length = 2e-6
+    speed = (length + 2 * math.sqrt(TOL ** 2 - gap ** 2)) / 1e-6
+    model = build_model(blade_scene(tmp_path, gap, length, speed, nodes="node.csv"))
+    found = model.network.areas[0].track.source
+    box = model.geometry["bodies"]["blade"][1].vertices[:, 0]
+    t_in, t_out = blade_reference(0.01, box.min(), box.max(), gap, speed)
+    assert t_out - t_in == pytest.approx(1e-6, rel=1e-6)
+    assert found.state.tolist() == [True, False] and found.unresolved == 0
+    np.testing.assert_allclose(found.theta, [t_in, t_out], rtol=0, atol=1e-12)
+
+
+def _distances(p, tri):
+    """(k,) distances of points p (k, 3) to a triangle by brute force: the plane where the projection is inside,
+    else the nearest of the three edges."""
+    a, b, c = tri
+    n = np.cross(b - a, c - a)
+    n /= np.linalg.norm(n)
+    h = (p - a) @ n
+    q = p - h[:, None] * n
+    inside = np.all([np.cross(v1 - v0, q - v0) @ n >= 0 for v0, v1 in ((a, b), (b, c), (c, a))], axis=0)
+    edge = np.min([np.linalg.norm(p - v0 - np.clip((p - v0) @ (v1 - v0) / ((v1 - v0) @ (v1 - v0)), 0, 1)[:, None]
+                                  * (v1 - v0), axis=1) for v0, v1 in ((a, b), (b, c), (c, a))], axis=0)
+    return np.where(inside, np.abs(h), edge)
+
+
+def test_segment_intervals_match_dense_sampling_and_end_at_the_radius():
+    rng = np.random.default_rng(7)
+    ts = np.linspace(0.0, 1.0, 10001)
+    for _ in range(200):
+        tri = rng.normal(size=(1, 3, 3))
+        P, D, r = rng.normal(size=(1, 3)) * 1.5, rng.normal(size=(1, 3)) * 3, abs(rng.normal()) * 0.7
+        lo, hi = triangle_intervals(P, D, tri, r)
+        inside = _distances(P[0] + ts[:, None] * D[0], tri[0]) <= r
+        predicted = (ts >= lo[0]) & (ts <= hi[0])
+        assert np.count_nonzero(inside != predicted) <= 2  # sampling can only disagree next to an end
+        ends = np.array([t for t in (lo[0], hi[0]) if 0.0 < t < 1.0])
+        if ends.size:
+            np.testing.assert_allclose(_distances(P[0] + ends[:, None] * D[0], tri[0]), r, rtol=1e-9)
+
+
+def test_touching_at_gap_zero_is_contact():
+    tri = np.array([[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]])
+    at_rest = triangle_intervals(np.array([[0.2, 0.2, 0.0]]), np.zeros((1, 3)), tri, 0.0)
+    assert (at_rest[0][0], at_rest[1][0]) == (0.0, 1.0)
+    sliding = triangle_intervals(np.array([[-1.0, 0.2, 0.0]]), np.array([[2.0, 0.0, 0.0]]), tri, 0.0)
+    assert (sliding[0][0], sliding[1][0]) == pytest.approx((0.5, 0.9), abs=1e-15)  # x in [0, 0.8]
+    crossing = triangle_intervals(np.array([[0.2, 0.2, -1.0]]), np.array([[0.0, 0.0, 2.0]]), tri, 0.0)
+    assert crossing[0][0] == crossing[1][0] == 0.5  # an instant
+    above = triangle_intervals(np.array([[0.2, 0.2, 1e-300]]), np.zeros((1, 3)), tri, 0.0)
+    assert above[0][0] > above[1][0]
