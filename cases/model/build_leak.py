@@ -11,7 +11,7 @@ from cavity.caution import caution
 
 from cases.model.area_track import AreaTrack, node_weights
 from cases.model.crossings import RESOLUTION, SearchBudget, certified_crossings
-from cases.model.exact_crossings import exact_solver
+from cases.model.exact_crossings import behind_open_sheet, exact_solver
 from cases.scene.errors import SceneError
 from cases.model.mesh_series import is_series, read_mesh_series
 from cases.model.gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
@@ -127,14 +127,18 @@ def _search(scene, j, field, n, knots, weights, unit):
     (which nodes, how much blocked area·θ is at stake) as a caution, or an error with ``[blockage] strict``."""
     wall = getattr(getattr(scene, "limits", None), "wall", 0.0) or np.inf
     try:
+        exact, sheet = exact_solver(field, knots), behind_open_sheet(field)
         found = certified_crossings(field.excess, n, knots, field.speed(knots), deadline=time.perf_counter() + wall,
-                                    exact=exact_solver(field, knots))
+                                    exact=exact, exact_first=sheet)
     except SearchBudget as exc:
         raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"the crossing search of the leakage surface "
                                                                   f"stopped at limits.wall = {wall:g} s ({exc}); "
                                                                   "raise limits.wall or coarsen the surface") from None
-    if found.unresolved:
-        message = uncertified_message(found, weights, unit)
+    messages = [uncertified_message(found, weights, unit)] if found.unresolved else []
+    if sheet and exact is None:
+        messages.append("a node slipping behind an open blocking sheet (penetration_depth) around its edge is judged "
+                        "at the search's samples, not certified, for a rotating or deforming sheet")
+    for message in messages:
         if getattr(getattr(scene, "blockage", None), "strict", False):
             raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"{message}; [blockage] strict = true (or "
                                                                       "--strict) refuses it: make the motion a "

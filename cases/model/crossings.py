@@ -32,6 +32,9 @@ MAX_PENDING = 20_000_000
 #: Unsettled sub-intervals of one (node, knot interval) beyond which that pair is not bisected further: its gap
 #: hovers within the bound of the tolerance (a plate sliding along a seat just outside it); counted as unresolved.
 MAX_LEAVES = 64
+#: The same when no closed form can take over (a rotating or deforming blocker): bisected further, so that what
+#: stays uncertain (and is reported) is only where the gap really hovers.
+MAX_LEAVES_UNSOLVED = 1024
 
 
 class SearchBudget(RuntimeError):
@@ -65,7 +68,7 @@ class Crossings:
 
 
 def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLUTION,
-                        deadline: float = np.inf, exact=None) -> Crossings:
+                        deadline: float = np.inf, exact=None, exact_first: bool = False) -> Crossings:
     """All crossings of f_i(θ) = 0 for nodes i < n on [knots[0], knots[-1]].
 
     Parameters
@@ -87,6 +90,9 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         Every crossing of those nodes on knot interval j, solved in closed form (:mod:`cases.model.exact_crossings`);
         asked for the (node, knot interval) pairs the bound cannot settle (their gap hovers near the tolerance).
         None, or no callable: those pairs are reported in ``uncertain``.
+    exact_first : bool
+        Solve every pair with ``exact`` and bisect none (the gap is not Lipschitz: a node slipping behind an open
+        sheet around its edge changes side at a distance); pairs it cannot solve are bisected as usual.
     """
     knots = np.asarray(knots, dtype=float)
     h_min = resolution * (knots[-1] - knots[0])
@@ -101,6 +107,9 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
     L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
         if len(knots) > 1 else np.zeros(0)
     brackets, solved, uncertain, unresolved = [], [], np.zeros(n), 0
+    if exact_first and exact is not None and a.size:
+        left = _settle_stuck(np.ones(a.size, bool), (a, b, fa, fb, node, origin), F <= 0, n, exact, [], solved)
+        a, b, fa, fb, node, L, origin = (v[left] for v in (a, b, fa, fb, node, L, origin))
     while a.size:
         if time.perf_counter() > deadline or a.size > MAX_PENDING:
             raise SearchBudget(f"{a.size} node intervals still unsettled after {evaluations} gap evaluations")
@@ -112,7 +121,7 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         if change.any():
             brackets.append((a[change], b[change], fa[change], fb[change], node[change], origin[change]))
         split = ~settled & ~leaf
-        stuck = _crowded(split, origin)
+        stuck = _crowded(split, origin, MAX_LEAVES if exact is not None else MAX_LEAVES_UNSOLVED)
         if stuck.any():
             left = _settle_stuck(stuck, (a, b, fa, fb, node, origin), F <= 0, n, exact, brackets, solved)
             unresolved += int(np.count_nonzero(left))
@@ -131,11 +140,11 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
     return replace(found, unresolved=unresolved, uncertain=uncertain)
 
 
-def _crowded(split, origin) -> np.ndarray:
-    """(k,) bool: the intervals of (node, knot interval) pairs holding more than MAX_LEAVES unsettled ones (their
+def _crowded(split, origin, most) -> np.ndarray:
+    """(k,) bool: the intervals of (node, knot interval) pairs holding more than ``most`` unsettled ones (their
     gap hovers at the tolerance): not bisected further."""
     count = np.bincount(origin[split], minlength=int(origin.max()) + 1 if origin.size else 0)
-    return split & (count > MAX_LEAVES)[origin]
+    return split & (count > most)[origin]
 
 
 def _settle_stuck(stuck, arrays, inside, n, exact, brackets, solved) -> np.ndarray:

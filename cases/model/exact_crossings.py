@@ -24,7 +24,13 @@ from blockage.sides import sides_of
 from cases.model.gaps import RigidPlacement
 from cases.model.segment_contact import candidate_rows, triangle_intervals
 
-__all__ = ["exact_solver", "segment_exact"]
+__all__ = ["exact_solver", "segment_exact", "behind_open_sheet"]
+
+
+def behind_open_sheet(field) -> bool:
+    """Some blocker is an open sheet whose back counts within a penetration depth: the gap then jumps where a
+    node passes its edge (not Lipschitz), so the bound cannot certify an interval."""
+    return any(getattr(p, "open_depth", 0.0) > 0 and not sides_of(p.blocker).closed for p in field.placements)
 
 
 def segment_exact(field) -> bool:
