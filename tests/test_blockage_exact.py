@@ -42,7 +42,8 @@ def test_a_blade_sliding_within_the_tolerance_blocks_what_brute_force_does(tmp_p
     assert not any("not certified" in str(w) or "hover" in str(w) for w in model.warnings)
     track = model.network.areas[0].track
     surface, _ = model.geometry["surfaces"][0]
-    box = model.geometry["bodies"]["blade"][1].vertices[:, 0]
+    vertices = model.geometry["bodies"]["blade"][1].vertices
+    box, gap = vertices[:, 0], float(vertices[:, 2].min())  # the gap the float vertices give
     t_in, t_out = blade_reference(surface.vertices[:, 0], box.min(), box.max(), gap, 1.0)
     reference = float(np.sum(_node_weights(surface) * (t_out - t_in)))  # every node in contact once
     assert track.source.unresolved == 0
@@ -58,8 +59,9 @@ def test_a_brief_contact_while_sliding_parallel_is_found_and_timed(tmp_path, gap
     speed = (length + 2 * math.sqrt(TOL ** 2 - gap ** 2)) / 1e-6
     model = build_model(blade_scene(tmp_path, gap, length, speed, nodes="node.csv"))
     found = model.network.areas[0].track.source
-    box = model.geometry["bodies"]["blade"][1].vertices[:, 0]
-    t_in, t_out = blade_reference(0.01, box.min(), box.max(), gap, speed)
+    vertices = model.geometry["bodies"]["blade"][1].vertices
+    box, actual = vertices[:, 0], float(vertices[:, 2].min())  # the gap the float vertices give
+    t_in, t_out = blade_reference(0.01, box.min(), box.max(), actual, speed)
     assert t_out - t_in == pytest.approx(1e-6, rel=1e-6)
     assert found.state.tolist() == [True, False] and found.unresolved == 0
     np.testing.assert_allclose(found.theta, [t_in, t_out], rtol=0, atol=1e-12)
