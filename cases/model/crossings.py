@@ -11,10 +11,11 @@ is > 0 or the second ≤ 0. Every unsettled interval is bisected, all nodes toge
 level), until it is settled or shorter than the resolution h_min; the leaves whose ends differ in state hold a
 crossing, located to a few ulp by regula falsi (Illinois). Guarantee: every contact, and every release, that
 lasts at least h_min is found and timed to machine precision; a contact shorter than h_min can be missed, and
-then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). The one
-exception is a node whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES`
-sub-intervals of a knot interval (a plate sliding along a seat just outside the tolerance): that pair is not
-bisected further, its crossings found so far are kept, and it is counted in ``unresolved`` (a warning).
+then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). A node
+whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES` sub-intervals of a knot
+interval (a blade sliding over a vent inside the tolerance) is handed to a closed-form solver when the motion has
+one (:mod:`cases.model.exact_crossings`: every crossing exact, no resolution limit); otherwise it is bisected up
+to :data:`MAX_LEAVES_UNSOLVED` sub-intervals, and what stays unsettled is reported in ``uncertain``.
 """
 from __future__ import annotations
 
@@ -29,8 +30,8 @@ __all__ = ["Crossings", "certified_crossings", "RESOLUTION", "batched_roots", "S
 RESOLUTION = 1e-10
 #: Unsettled (node, interval) pairs at one bisection level beyond which the search stops (memory).
 MAX_PENDING = 20_000_000
-#: Unsettled sub-intervals of one (node, knot interval) beyond which that pair is not bisected further: its gap
-#: hovers within the bound of the tolerance (a plate sliding along a seat just outside it); counted as unresolved.
+#: Unsettled sub-intervals of one (node, knot interval) beyond which that pair goes to the closed-form solver: its
+#: gap hovers within the bound of the tolerance (a plate sliding along a seat just outside it).
 MAX_LEAVES = 64
 #: The same when no closed form can take over (a rotating or deforming blocker): bisected further, so that what
 #: stays uncertain (and is reported) is only where the gap really hovers.
@@ -85,27 +86,16 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         h_min as a fraction of the range.
     deadline : float
         ``time.perf_counter()`` after which :class:`SearchBudget` is raised (checked once per level).
-    exact : callable (j, nodes (k,), in at knots[j] (k,) bool, in at knots[j+1] (k,) bool) -> (θ, node, state)
-        or None, optional
-        Every crossing of those nodes on knot interval j, solved in closed form (:mod:`cases.model.exact_crossings`);
-        asked for the (node, knot interval) pairs the bound cannot settle (their gap hovers near the tolerance).
-        None, or no callable: those pairs are reported in ``uncertain``.
+    exact : callable (j, nodes (k,), in at knots[j] (k,), in at knots[j+1] (k,)) -> (θ, node, state) or None
+        Every crossing of those nodes on knot interval j in closed form (:mod:`cases.model.exact_crossings`), for
+        the pairs the bound cannot settle; without it (or when it returns None) they go to ``uncertain``.
     exact_first : bool
-        Solve every pair with ``exact`` and bisect none (the gap is not Lipschitz: a node slipping behind an open
-        sheet around its edge changes side at a distance); pairs it cannot solve are bisected as usual.
+        Solve every pair with ``exact`` first (the gap is not Lipschitz: behind an open sheet around its edge).
     """
     knots = np.asarray(knots, dtype=float)
     h_min = resolution * (knots[-1] - knots[0])
-    nodes = np.arange(n)
-    F = excess(np.repeat(knots, n), np.tile(nodes, len(knots))).reshape(len(knots), n)
+    F, (a, b, fa, fb, node, origin, L) = _knot_pairs(excess, n, knots, speed)
     evaluations = F.size
-    a = np.repeat(knots[:-1], n)
-    b = np.repeat(knots[1:], n)
-    fa, fb = F[:-1].ravel(), F[1:].ravel()
-    node = np.tile(nodes, len(knots) - 1)
-    origin = np.arange(node.size)
-    L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
-        if len(knots) > 1 else np.zeros(0)
     brackets, solved, uncertain, unresolved = [], [], np.zeros(n), 0
     if exact_first and exact is not None and a.size:
         left = _settle_stuck(np.ones(a.size, bool), (a, b, fa, fb, node, origin), F <= 0, n, exact, [], solved)
@@ -138,6 +128,17 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
     found = _located(F[0] <= 0, brackets, solved, excess, h_min, evaluations, n)
     return replace(found, unresolved=unresolved, uncertain=uncertain)
+
+
+def _knot_pairs(excess, n, knots, speed):
+    """f at every knot (K + 1, n), and the (node, knot interval) pairs: a, b, f(a), f(b), node, origin, bound L."""
+    nodes = np.arange(n)
+    F = excess(np.repeat(knots, n), np.tile(nodes, len(knots))).reshape(len(knots), n)
+    node = np.tile(nodes, len(knots) - 1)
+    L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
+        if len(knots) > 1 else np.zeros(0)
+    return F, (np.repeat(knots[:-1], n), np.repeat(knots[1:], n), F[:-1].ravel(), F[1:].ravel(), node,
+               np.arange(node.size), L)
 
 
 def _crowded(split, origin, most) -> np.ndarray:
