@@ -125,7 +125,7 @@ def test_a_node_slipping_behind_an_open_strip_around_its_edge_is_found(tmp_path)
     np.testing.assert_allclose(found.theta, [0.29 / 0.8, 0.3 / 0.8], rtol=1e-14)
 
 
-def rotating_blade(folder, strict=False):
+def rotating_blade(folder, strict=False, data_only=False):
     """A 60 mm wide blade, underside 18 µm above z = 0, turning 90° about z in 1 s over one node at 45°: the gap
     stays inside the tolerance while it passes, and a rotation is not solved in closed form."""
     (folder / "turn.csv").write_text("t,deg\n0,0\n1,90\n")
@@ -137,7 +137,7 @@ def rotating_blade(folder, strict=False):
                      "rotation_table": "turn.csv"}]
     data["exchange"] = [{"name": "vent", "from": "tank", "leakage_nodes": "node.csv", "blocked_by": ["blade"],
                          "contact_tolerance": TOL}]
-    return scene_from_dict(data, folder / "scene.toml")
+    return data if data_only else scene_from_dict(data, folder / "scene.toml")
 
 
 def test_an_uncertified_contact_names_its_node_and_bounds_what_is_at_stake(tmp_path):
@@ -160,3 +160,16 @@ def test_strict_turns_an_uncertified_contact_into_an_error(tmp_path):
 
     with pytest.raises(SceneError, match="strict"):
         build_model(rotating_blade(tmp_path, strict=True))
+
+
+def test_run_strict_on_the_command_line_and_in_python(tmp_path, capsys):
+    import ventsim
+    from cases.cli import main
+    from cases.scene.errors import SceneError
+    from tests.toml_write import dumps
+
+    (tmp_path / "scene.toml").write_text(dumps(rotating_blade(tmp_path, data_only=True)))
+    assert main(["run", str(tmp_path / "scene.toml"), "--strict", "--quiet", "--out", str(tmp_path / "out")]) == 2
+    assert "not certified" in capsys.readouterr().err
+    with pytest.raises(SceneError, match="strict"):
+        ventsim.run(tmp_path / "scene.toml", strict=True)

@@ -25,9 +25,6 @@ UNIT_SYSTEMS = ("SI", "mm-t-s", "mm-kg-ms")
 class BlockageSpec:
     """Which blockage rule the scene's blocked exchanges follow (docs/fe_rules.md)."""
 
-    strict: bool = key("true: a run whose contact intervals are not all certified (a rotating or deforming "
-                        "blocker hovering near the tolerance) stops with an error instead of a warning; also "
-                        "`ventsim run --strict`", default=False)
     rule: str = key("'exact' (ventsim: every contact and release at its own instant), or an FE code's rule: "
                     "'abaqus', 'radioss', 'lsdyna_cpm' (*AIRBAG_PARTICLE BLOCK), 'lsdyna_cpg' (*AIRBAG_CPG, whole "
                     "elements)", default="exact", choices=RULES)
@@ -46,6 +43,9 @@ class BlockageSpec:
     blocked_leak_fraction: float = key("fraction of blocked fabric that still leaks (LS-DYNA ELA, Radioss AC') "
                                        "for the fabric-law exchanges; omitted: each exchange's permeability",
                                        default=None, check="fraction")
+    strict: bool = key("true: a run whose contact intervals are not all certified (a rotating or deforming "
+                        "blocker hovering near the tolerance) stops with an error instead of a warning; also "
+                        "`ventsim run --strict`", default=False)
 
 
 @dataclass(frozen=True, kw_only=True)
