@@ -230,6 +230,9 @@ def blockage_rule(scene, j) -> dict:
             "side test": "angle-weighted pseudonormal at the closest point (Baerentzen & Aanaes 2005)",
             "guarantee": f"every contact and release lasting at least {RESOLUTION:g} of the searched range (the "
                          "run, or the body's travel) is found and timed to machine precision: Lipschitz bound on "
-                         "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi",
+                         "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi; "
+                         "where the gap hovers near the tolerance on a translating blocker, every crossing in "
+                         "closed form (segment against the tolerance offset of each face), of any length; what "
+                         "cannot be certified (rotating or deforming blockers) is a warning naming its nodes",
             "area switches shared": f"crossings within {GROUP_WINDOW:g}*sqrt(rtol) of the run share one switch"
                                     if GROUP_WINDOW > 0 else "none: every crossing is a switch"}

@@ -147,20 +147,23 @@ def _capsule(P, D, v0, v1, r, lo, hi):
     _hull(lo, hi, clo, chi)
 
 
-def candidate_rows(P, D, vertices, faces, reach, chunk=2_000_000):
-    """(segment (m,), face (m,)) pairs whose bounding boxes, the segment's grown by ``reach`` [m], overlap."""
+def candidate_rows(P, D, vertices, faces, reach, chunk=128):
+    """(segment (m,), face (m,)) pairs whose bounding boxes, the segment's grown by ``reach`` [m], overlap.
+
+    Segments go in chunks of ``chunk``; each chunk tests only the faces that meet the chunk's own box (node ids
+    are spatially coherent, so a chunk's box is small), so the cost is about segments × faces near them."""
     tri = vertices[faces]
     flo, fhi = tri.min(axis=1), tri.max(axis=1)
     slo = np.minimum(P, P + D) - reach
     shi = np.maximum(P, P + D) + reach
-    per = max(1, chunk // max(len(faces), 1))
-    seg, face = [], []
-    for start in range(0, len(P), per):
-        s = slice(start, start + per)
-        hit = np.all((slo[s, None] <= fhi[None]) & (shi[s, None] >= flo[None]), axis=2)
+    seg, face = [np.zeros(0, np.int64)], [np.zeros(0, np.int64)]
+    for start in range(0, len(P), chunk):
+        s = slice(start, start + chunk)
+        near = np.flatnonzero(np.all((slo[s].min(axis=0) <= fhi) & (shi[s].max(axis=0) >= flo), axis=1))
+        if not near.size:
+            continue
+        hit = np.all((slo[s, None] <= fhi[near][None]) & (shi[s, None] >= flo[near][None]), axis=2)
         i, f = np.nonzero(hit)
         seg.append(i + start)
-        face.append(f)
-    if not seg:
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+        face.append(near[f])
     return np.concatenate(seg), np.concatenate(face)
