@@ -11,6 +11,7 @@ from cavity.caution import caution
 
 from cases.model.area_track import AreaTrack, node_weights
 from cases.model.crossings import RESOLUTION, SearchBudget, certified_crossings
+from cases.model.chord_crossings import chord_solver
 from cases.model.exact_crossings import behind_open_sheet, exact_solver
 from cases.scene.errors import SceneError
 from cases.model.mesh_series import is_series, read_mesh_series
@@ -127,7 +128,7 @@ def _search(scene, j, field, n, knots, weights, unit):
     (which nodes, how much blocked area·θ is at stake) as a caution, or an error with ``[blockage] strict``."""
     wall = getattr(getattr(scene, "limits", None), "wall", 0.0) or np.inf
     try:
-        exact, sheet = exact_solver(field, knots), behind_open_sheet(field)
+        exact, sheet = exact_solver(field, knots) or chord_solver(field, knots), behind_open_sheet(field)
         found = certified_crossings(field.excess, n, knots, field.speed(knots), deadline=time.perf_counter() + wall,
                                     exact=exact, exact_first=sheet)
     except SearchBudget as exc:
@@ -141,8 +142,8 @@ def _search(scene, j, field, n, knots, weights, unit):
     for message in messages:
         if getattr(getattr(scene, "blockage", None), "strict", False):
             raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"{message}; [blockage] strict = true (or "
-                                                                      "--strict) refuses it: make the motion a "
-                                                                      "translation, or refine its tables")
+                                                                      "--strict) refuses it: give the body a rigid "
+                                                                      "motion (translation and rotation tables)")
         caution(f"exchange {scene.exchange[j].name}: {message}")
     return found
 
@@ -153,8 +154,8 @@ def uncertified_message(found, weights, unit) -> str:
     stake = float(np.dot(found.uncertain[who], weights[who]))
     names = ", ".join(str(int(i)) for i in who[:8]) + (", ..." if len(who) > 8 else "")
     return (f"the contact of {len(who)} leakage node(s) ({names}) is not certified on "
-            f"{float(found.uncertain.sum()):.3g} {unit} of node intervals (a rotating or deforming blocker whose "
-            f"gap stays near the tolerance): at most {stake:.3g} m^2*{unit} of blocked area*{unit} is at stake")
+            f"{float(found.uncertain.sum()):.3g} {unit} of node intervals (a deforming blocker, or edge or self-"
+            f"contact, whose gap stays near the tolerance): at most {stake:.3g} m^2*{unit} of blocked area*{unit} is at stake")
 
 
 def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):

@@ -82,10 +82,8 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         Increasing θ values, the motion's breakpoints and the ends of the range.
     speed : callable (j, nodes (k,) int) -> (k,) float
         Bound on |df_i/dθ| on [knots[j], knots[j+1]] [m per unit of θ].
-    resolution : float
-        h_min as a fraction of the range.
-    deadline : float
-        ``time.perf_counter()`` after which :class:`SearchBudget` is raised (checked once per level).
+    resolution, deadline : float
+        h_min as a fraction of the range; ``time.perf_counter()`` after which :class:`SearchBudget` is raised.
     exact : callable (j, nodes (k,), in at knots[j] (k,), in at knots[j+1] (k,)) -> (θ, node, state) or None
         Every crossing of those nodes on knot interval j in closed form (:mod:`cases.model.exact_crossings`), for
         the pairs the bound cannot settle; without it (or when it returns None) they go to ``uncertain``.
@@ -98,7 +96,8 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
     evaluations = F.size
     brackets, solved, uncertain, unresolved = [], [], np.zeros(n), 0
     if exact_first and exact is not None and a.size:
-        left = _settle_stuck(np.ones(a.size, bool), (a, b, fa, fb, node, origin), F <= 0, n, exact, [], solved)
+        left = _settle_stuck(np.ones(a.size, bool), (a, b, fa, fb, node, origin), F <= 0, n, exact, [], solved,
+                             uncertain)
         a, b, fa, fb, node, L, origin = (v[left] for v in (a, b, fa, fb, node, L, origin))
     while a.size:
         if time.perf_counter() > deadline or a.size > MAX_PENDING:
@@ -113,21 +112,21 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         split = ~settled & ~leaf
         stuck = _crowded(split, origin, MAX_LEAVES if exact is not None else MAX_LEAVES_UNSOLVED)
         if stuck.any():
-            left = _settle_stuck(stuck, (a, b, fa, fb, node, origin), F <= 0, n, exact, brackets, solved)
+            left = _settle_stuck(stuck, (a, b, fa, fb, node, origin), F <= 0, n, exact, brackets, solved,
+                                 uncertain)
             unresolved += int(np.count_nonzero(left))
             np.add.at(uncertain, node[left], h[left])
         split &= ~stuck
         a, b, fa, fb, node, L, origin = (v[split] for v in (a, b, fa, fb, node, L, origin))
-        if not a.size:
-            break
         m = 0.5 * (a + b)
-        fm = excess(m, node)
+        fm = excess(m, node) if m.size else m
         evaluations += m.size
         a, b = np.concatenate([a, m]), np.concatenate([m, b])
         fa, fb = np.concatenate([fa, fm]), np.concatenate([fm, fb])
         node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
     found = _located(F[0] <= 0, brackets, solved, excess, h_min, evaluations, n)
-    return replace(found, unresolved=unresolved, uncertain=uncertain)
+    banded = int(sum(np.count_nonzero(x[5] > 0) for x in solved if len(x) > 5))  # nodes a solver left uncertain
+    return replace(found, unresolved=unresolved + banded, uncertain=uncertain)
 
 
 def _knot_pairs(excess, n, knots, speed):
@@ -148,9 +147,10 @@ def _crowded(split, origin, most) -> np.ndarray:
     return split & (count > most)[origin]
 
 
-def _settle_stuck(stuck, arrays, inside, n, exact, brackets, solved) -> np.ndarray:
+def _settle_stuck(stuck, arrays, inside, n, exact, brackets, solved, uncertain=None) -> np.ndarray:
     """Hand the stuck (node, knot interval) pairs to ``exact``; (k,) bool: the stuck intervals it could not solve
-    (their brackets are kept, their length counted as uncertain)."""
+    (their brackets are kept, their length counted as uncertain). A solver may return a fourth array, the length
+    of θ on which each node's state stays uncertain (added to ``uncertain``)."""
     a, b, fa, fb, node, origin = arrays
     left = stuck.copy()
     if exact is not None:
@@ -158,10 +158,13 @@ def _settle_stuck(stuck, arrays, inside, n, exact, brackets, solved) -> np.ndarr
         for j in np.unique(pairs // n):
             ids = pairs[pairs // n == j] % n
             got = exact(int(j), ids, inside[j, ids], inside[j + 1, ids])
-            if got is not None:
-                theta, who, state = got
-                solved.append((theta, who, state, np.full(len(theta), int(j)), j * n + ids))
-                left &= ~np.isin(origin, j * n + ids)
+            if got is None:
+                continue
+            theta, who, state = got[:3]
+            solved.append((theta, who, state, np.full(len(theta), int(j)), j * n + ids) + tuple(got[3:]))
+            left &= ~np.isin(origin, j * n + ids)
+            if len(got) > 3 and uncertain is not None:
+                uncertain[ids] += got[3]
     change = left & ((fa <= 0) != (fb <= 0))
     if change.any():
         brackets.append((a[change], b[change], fa[change], fb[change], node[change], origin[change]))

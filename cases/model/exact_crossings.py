@@ -24,7 +24,7 @@ from blockage.sides import sides_of
 from cases.model.gaps import RigidPlacement
 from cases.model.segment_contact import candidate_rows, triangle_intervals
 
-__all__ = ["exact_solver", "segment_exact", "behind_open_sheet"]
+__all__ = ["exact_solver", "segment_exact", "behind_open_sheet", "flips", "events"]
 
 
 def behind_open_sheet(field) -> bool:
@@ -57,7 +57,7 @@ def exact_solver(field, knots):
         for placement in field.placements:
             P = placement.to_local(np.full(len(nodes), a), xa)
             D = placement.to_local(np.full(len(nodes), b), xb) - P
-            for ev in _events(placement, P, D, field.tolerance):
+            for ev in events(placement, P, D, field.tolerance):
                 for lst, x in zip((pair, t, inc), ev):
                     lst.append(x)
         pair, t, inc = (np.concatenate(x) for x in (pair, t, inc))
@@ -66,7 +66,7 @@ def exact_solver(field, knots):
     return solve
 
 
-def _events(placement, P, D, tol):
+def events(placement, P, D, tol):
     """(pair, t, +1/−1/0) events: tolerance intervals open (+1) and close (−1); 0: open-sheet breakpoints."""
     blocker = placement.blocker
     depth = float(placement.open_depth)
@@ -100,14 +100,21 @@ def _crossings(field, nodes, a, b, pair, t, inc, start, end):
     if free.size:  # outside every tolerance interval: inside / behind a blocker or not
         mid = a + 0.5 * (t0[free] + t1[free]) * (b - a)
         state[free] = field.excess(mid, nodes[p[free]]) <= 0
+    theta = np.where(t0 <= 0.0, a, a + t0 * (b - a))
+    return flips(nodes, p, theta, state, start, end, b)
+
+
+def flips(nodes, p, theta, state, start, end, b):
+    """(θ, node, state after) where the state of consecutive pieces (pair ``p``, sorted, starting at ``theta``)
+    changes; the first piece is compared with the state at the interval's start, and the last with the state at
+    its end ``b`` (a knot: the next interval starts from it)."""
     first = np.ones(len(p), dtype=bool)
     first[1:] = p[1:] != p[:-1]
     last = np.append(first[1:], True)
     before = np.where(first, np.asarray(start, bool)[p], np.roll(state, 1))
     flip = state != before
-    theta = np.where(t0 <= 0.0, a, a + t0 * (b - a))
     end = np.asarray(end, bool)
-    tail = last & (state != end[p])  # the bound's state at b (a knot) is kept: the next interval starts from it
+    tail = last & (state != end[p])
     who = np.concatenate([p[flip], p[tail]])
     return (np.concatenate([theta[flip], np.full(tail.sum(), b)]), nodes[who],
             np.concatenate([state[flip], end[p[tail]]]))
