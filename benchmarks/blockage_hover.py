@@ -3,7 +3,8 @@
 Requires: the ventsim package. Run: python benchmarks/blockage_hover.py
 Prints the blade's blocked area·time against the exact per-node reference (each node's contact interval from the
 box's geometry), the build and run CPU time of its 1 s run with 20,001 output rows, and the timing error of a
-contact lasting 1e-6 of the run at gaps from 0 to just under the tolerance. Figures quoted in docs/blockage.md.
+contact lasting 1e-6 of the run at gaps from 0 to just under the tolerance, and a blade turning over a node inside
+the tolerance (chords). Figures quoted in docs/blockage.md.
 """
 import math
 import tempfile
@@ -54,7 +55,22 @@ def brief(folder):
         print(f"{gap / TOL:>16.12f} {t_out - t_in:>12.3e} {err[0]:>12.1e} {err[1]:>12.1e}")
 
 
+def rotating(folder):
+    from tests.test_blockage_exact import rotating_blade
+
+    t0 = time.process_time()
+    model = build_model(rotating_blade(folder))
+    t1 = time.process_time()
+    found = model.network.areas[0].track.source
+    gap = float(model.geometry["bodies"]["blade"][1].vertices[:, 2].min())
+    half = math.asin((0.03 + math.sqrt(TOL ** 2 - gap ** 2)) / math.hypot(0.05, 0.05)) / math.radians(90.0)
+    err = np.abs(found.theta - [0.5 - half, 0.5 + half])
+    print(f"rotating blade: contact {2 * half:.4f} s, entry error {err[0]:.1e}, exit error {err[1]:.1e}, "
+          f"uncertain {float(found.uncertain.sum()):.1e} s, build {t1 - t0:.2f} s CPU")
+
+
 if __name__ == "__main__":
     with tempfile.TemporaryDirectory() as tmp:
         blade(Path(tmp))
         brief(Path(tmp))
+        rotating(Path(tmp))

@@ -233,7 +233,8 @@ def blockage_rule(scene, j) -> dict:
                          "run, or the body's travel) is found and timed to machine precision: Lipschitz bound on "
                          "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi; "
                          "where the gap hovers near the tolerance on a translating blocker, every crossing in "
-                         "closed form (segment against the tolerance offset of each face), of any length; what "
-                         "cannot be certified (rotating or deforming blockers) is a warning naming its nodes",
+                         "closed form (segment against the tolerance offset of each face), of any length, and on a "
+                         "rotating one by chords of certified deviation; what cannot be certified (deforming "
+                         "blockers, edge or self-contact) is a warning naming its nodes",
             "area switches shared": f"crossings within {GROUP_WINDOW:g}*sqrt(rtol) of the run share one switch"
                                     if GROUP_WINDOW > 0 else "none: every crossing is a switch"}

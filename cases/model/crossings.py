@@ -13,8 +13,9 @@ crossing, located to a few ulp by regula falsi (Illinois). Guarantee: every cont
 lasts at least h_min is found and timed to machine precision; a contact shorter than h_min can be missed, and
 then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). A node
 whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES` sub-intervals of a knot
-interval (a blade sliding over a vent inside the tolerance) is handed to a closed-form solver when the motion has
-one (:mod:`cases.model.exact_crossings`: every crossing exact, no resolution limit); otherwise it is bisected up
+interval (a blade sliding over a vent inside the tolerance) is handed to a solver when the motion has one
+(:mod:`cases.model.exact_crossings` for translations: every crossing exact, no resolution limit;
+:mod:`cases.model.chord_crossings` for rotations: chords of certified deviation); otherwise it is bisected up
 to :data:`MAX_LEAVES_UNSOLVED` sub-intervals, and what stays unsettled is reported in ``uncertain``.
 """
 from __future__ import annotations
@@ -33,7 +34,7 @@ MAX_PENDING = 20_000_000
 #: Unsettled sub-intervals of one (node, knot interval) beyond which that pair goes to the closed-form solver: its
 #: gap hovers within the bound of the tolerance (a plate sliding along a seat just outside it).
 MAX_LEAVES = 64
-#: The same when no closed form can take over (a rotating or deforming blocker): bisected further, so that what
+#: The same when no solver can take over (a deforming blocker, edge contact): bisected further, so that what
 #: stays uncertain (and is reported) is only where the gap really hovers.
 MAX_LEAVES_UNSOLVED = 1024
 
