@@ -40,7 +40,7 @@ def _run(args) -> int:
     start = time.process_time()
     scene, deck = scene_for_run(args.scene, args.out, args.units, args.quiet)
     try:
-        results = run_scene(scene, progress=not args.quiet, max_wall=args.max_wall)
+        results = run_scene(scene, progress=not args.quiet, max_wall=args.max_wall, strict=args.strict)
     except RunError as exc:
         if exc.partial is not None:
             with output_set(args.out) as stage:
@@ -132,6 +132,9 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--verbose", action="store_true", help="also print the CPU time of each phase")
     r.add_argument("--max-wall", type=_seconds, default=None, metavar="SECONDS",
                    help="stop the integration after this wall time (overrides [limits] wall)")
+    r.add_argument("--strict", action="store_true",
+                   help="stop with an error when a leakage node's contact intervals cannot all be certified "
+                        "(as [blockage] strict = true)")
     r.add_argument("--render", action="store_true",
                    help="also draw each blocked leakage surface off screen: PNGs, a GIF and a VTK series (.pvd)")
     r.add_argument("--times", type=float, nargs="+", default=None,

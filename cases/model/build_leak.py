@@ -11,6 +11,8 @@ from cavity.caution import caution
 
 from cases.model.area_track import AreaTrack, node_weights
 from cases.model.crossings import RESOLUTION, SearchBudget, certified_crossings
+from cases.model.chord_crossings import chord_solver
+from cases.model.exact_crossings import behind_open_sheet, exact_solver
 from cases.scene.errors import SceneError
 from cases.model.mesh_series import is_series, read_mesh_series
 from cases.model.gaps import DeformingPlacement, GapField, NodePath, RigidPlacement, SelfPlacement
@@ -120,21 +122,40 @@ def _knots(driver, path, lo, hi):
     return np.array([lo] + sorted(p for p in pts if lo < p < hi) + [hi])
 
 
-def _search(scene, j, field, n, knots):
-    """The certified crossings of exchange j within the scene's wall budget, with a caution when leaves of the
-    resolution stayed unsettled (a graze shorter than it may be missed)."""
+def _search(scene, j, field, n, knots, weights, unit):
+    """The certified crossings of exchange j within the scene's wall budget. Node intervals the bound cannot settle
+    are solved in closed form where the motion allows (:mod:`cases.model.exact_crossings`); any left are reported
+    (which nodes, how much blocked area·θ is at stake) as a caution, or an error with ``[blockage] strict``."""
     wall = getattr(getattr(scene, "limits", None), "wall", 0.0) or np.inf
     try:
-        found = certified_crossings(field.excess, n, knots, field.speed(knots), deadline=time.perf_counter() + wall)
+        exact, sheet = exact_solver(field, knots) or chord_solver(field, knots), behind_open_sheet(field)
+        found = certified_crossings(field.excess, n, knots, field.speed(knots), deadline=time.perf_counter() + wall,
+                                    exact=exact, exact_first=sheet)
     except SearchBudget as exc:
         raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"the crossing search of the leakage surface "
                                                                   f"stopped at limits.wall = {wall:g} s ({exc}); "
                                                                   "raise limits.wall or coarsen the surface") from None
-    if found.unresolved:
-        caution(f"exchange {scene.exchange[j].name}: {found.unresolved} node intervals hover within the bound of the "
-                "contact tolerance and were not bisected further: a contact shorter than that may be missed there; if "
-                "the blocked area matters, rerun with contact_tolerance changed by a few per cent and compare")
+    messages = [uncertified_message(found, weights, unit)] if found.unresolved else []
+    if sheet and exact is None:
+        messages.append("a node slipping behind an open blocking sheet (penetration_depth) around its edge is judged "
+                        "at the search's samples, not certified, for a rotating or deforming sheet")
+    for message in messages:
+        if getattr(getattr(scene, "blockage", None), "strict", False):
+            raise SceneError(scene.path, f"exchange[{j}].blocked_by", f"{message}; [blockage] strict = true (or "
+                                                                      "--strict) refuses it: give the body a rigid "
+                                                                      "motion (translation and rotation tables)")
+        caution(f"exchange {scene.exchange[j].name}: {message}")
     return found
+
+
+def uncertified_message(found, weights, unit) -> str:
+    """Which nodes' contact is not certified on which length of θ, and the blocked area·θ bound at stake."""
+    who = np.flatnonzero(found.uncertain > 0)
+    stake = float(np.dot(found.uncertain[who], weights[who]))
+    names = ", ".join(str(int(i)) for i in who[:8]) + (", ..." if len(who) > 8 else "")
+    return (f"the contact of {len(who)} leakage node(s) ({names}) is not certified on "
+            f"{float(found.uncertain.sum()):.3g} {unit} of node intervals (a deforming blocker, or edge or self-"
+            f"contact, whose gap stays near the tolerance): at most {stake:.3g} m^2*{unit} of blocked area*{unit} is at stake")
 
 
 def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
@@ -168,7 +189,7 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
     field = GapField(path, placements, tol, max(CUTOFF_TOLERANCES * tol, CUTOFF_EXTENT * size),
                      surface.edges if e.edge_contact else None)
     knots = _knots(driver, path, driver.lo, driver.hi)
-    found = _search(scene, j, field, len(path.x0), knots)
+    found = _search(scene, j, field, len(path.x0), knots, weights, "s" if driver.dynamic is None else "m")
     if scene.blockage.rule != "exact":  # an FE code's rule: flags sampled at its time steps, used with its lag
         from cases.model.fe_sampling import fe_leak_track
 
@@ -210,6 +231,10 @@ def blockage_rule(scene, j) -> dict:
             "side test": "angle-weighted pseudonormal at the closest point (Baerentzen & Aanaes 2005)",
             "guarantee": f"every contact and release lasting at least {RESOLUTION:g} of the searched range (the "
                          "run, or the body's travel) is found and timed to machine precision: Lipschitz bound on "
-                         "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi",
+                         "the gap from the motion, bisection where it cannot exclude a crossing, regula falsi; "
+                         "where the gap hovers near the tolerance on a translating blocker, every crossing in "
+                         "closed form (segment against the tolerance offset of each face), of any length, and on a "
+                         "rotating one by chords of certified deviation; what cannot be certified (deforming "
+                         "blockers, edge or self-contact) is a warning naming its nodes",
             "area switches shared": f"crossings within {GROUP_WINDOW:g}*sqrt(rtol) of the run share one switch"
                                     if GROUP_WINDOW > 0 else "none: every crossing is a switch"}

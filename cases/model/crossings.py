@@ -11,15 +11,17 @@ is > 0 or the second ≤ 0. Every unsettled interval is bisected, all nodes toge
 level), until it is settled or shorter than the resolution h_min; the leaves whose ends differ in state hold a
 crossing, located to a few ulp by regula falsi (Illinois). Guarantee: every contact, and every release, that
 lasts at least h_min is found and timed to machine precision; a contact shorter than h_min can be missed, and
-then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). The one
-exception is a node whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES`
-sub-intervals of a knot interval (a plate sliding along a seat just outside the tolerance): that pair is not
-bisected further, its crossings found so far are kept, and it is counted in ``unresolved`` (a warning).
+then it removes at most A_node·h_min of blocked area·time (A_node: the node's share of its faces' areas). A node
+whose gap hovers within the bound of the tolerance over more than :data:`MAX_LEAVES` sub-intervals of a knot
+interval (a blade sliding over a vent inside the tolerance) is handed to a solver when the motion has one
+(:mod:`cases.model.exact_crossings` for translations: every crossing exact, no resolution limit;
+:mod:`cases.model.chord_crossings` for rotations: chords of certified deviation); otherwise it is bisected up
+to :data:`MAX_LEAVES_UNSOLVED` sub-intervals, and what stays unsettled is reported in ``uncertain``.
 """
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -29,9 +31,12 @@ __all__ = ["Crossings", "certified_crossings", "RESOLUTION", "batched_roots", "S
 RESOLUTION = 1e-10
 #: Unsettled (node, interval) pairs at one bisection level beyond which the search stops (memory).
 MAX_PENDING = 20_000_000
-#: Unsettled sub-intervals of one (node, knot interval) beyond which that pair is not bisected further: its gap
-#: hovers within the bound of the tolerance (a plate sliding along a seat just outside it); counted as unresolved.
+#: Unsettled sub-intervals of one (node, knot interval) beyond which that pair goes to the closed-form solver: its
+#: gap hovers within the bound of the tolerance (a plate sliding along a seat just outside it).
 MAX_LEAVES = 64
+#: The same when no solver can take over (a deforming blocker, edge contact): bisected further, so that what
+#: stays uncertain (and is reported) is only where the gap really hovers.
+MAX_LEAVES_UNSOLVED = 1024
 
 
 class SearchBudget(RuntimeError):
@@ -42,9 +47,10 @@ class SearchBudget(RuntimeError):
 class Crossings:
     """Contact changes of n nodes on [lo, hi]: ``initial`` (n,) bool active at lo; ``theta`` (c,) sorted, the
     node (c,) and its state after (c,) bool; ``resolution`` h_min; ``evaluations`` gap queries made;
-    ``unresolved`` sub-intervals of (node, knot interval) pairs left unbisected under :data:`MAX_LEAVES` though
-    the bound could not settle them (a graze may hide there; grazes shorter than h_min are within the guarantee
-    and not counted)."""
+    ``unresolved`` sub-intervals of (node, knot interval) pairs left unbisected under :data:`MAX_LEAVES` that no
+    closed form could solve either, ``uncertain`` (n,) their total length per node [θ] (the node's state is not
+    certified there: at most its weight times that much blocked area·θ is at stake; a contact shorter than h_min
+    elsewhere is within the guarantee and not counted)."""
 
     initial: np.ndarray
     theta: np.ndarray
@@ -53,6 +59,7 @@ class Crossings:
     resolution: float
     evaluations: int = 0
     unresolved: int = 0
+    uncertain: np.ndarray | None = None
 
     def active_at(self, theta: float) -> np.ndarray:
         """(n,) bool: active nodes at θ (right limit at a crossing)."""
@@ -63,7 +70,7 @@ class Crossings:
 
 
 def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLUTION,
-                        deadline: float = np.inf) -> Crossings:
+                        deadline: float = np.inf, exact=None, exact_first: bool = False) -> Crossings:
     """All crossings of f_i(θ) = 0 for nodes i < n on [knots[0], knots[-1]].
 
     Parameters
@@ -76,24 +83,23 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         Increasing θ values, the motion's breakpoints and the ends of the range.
     speed : callable (j, nodes (k,) int) -> (k,) float
         Bound on |df_i/dθ| on [knots[j], knots[j+1]] [m per unit of θ].
-    resolution : float
-        h_min as a fraction of the range.
-    deadline : float
-        ``time.perf_counter()`` after which :class:`SearchBudget` is raised (checked once per level).
+    resolution, deadline : float
+        h_min as a fraction of the range; ``time.perf_counter()`` after which :class:`SearchBudget` is raised.
+    exact : callable (j, nodes (k,), in at knots[j] (k,), in at knots[j+1] (k,)) -> (θ, node, state) or None
+        Every crossing of those nodes on knot interval j in closed form (:mod:`cases.model.exact_crossings`), for
+        the pairs the bound cannot settle; without it (or when it returns None) they go to ``uncertain``.
+    exact_first : bool
+        Solve every pair with ``exact`` first (the gap is not Lipschitz: behind an open sheet around its edge).
     """
     knots = np.asarray(knots, dtype=float)
     h_min = resolution * (knots[-1] - knots[0])
-    nodes = np.arange(n)
-    F = excess(np.repeat(knots, n), np.tile(nodes, len(knots))).reshape(len(knots), n)
+    F, (a, b, fa, fb, node, origin, L) = _knot_pairs(excess, n, knots, speed)
     evaluations = F.size
-    a = np.repeat(knots[:-1], n)
-    b = np.repeat(knots[1:], n)
-    fa, fb = F[:-1].ravel(), F[1:].ravel()
-    node = np.tile(nodes, len(knots) - 1)
-    origin = np.arange(node.size)
-    L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
-        if len(knots) > 1 else np.zeros(0)
-    brackets, unresolved = [], 0
+    brackets, solved, uncertain, unresolved = [], [], np.zeros(n), 0
+    if exact_first and exact is not None and a.size:
+        left = _settle_stuck(np.ones(a.size, bool), (a, b, fa, fb, node, origin), F <= 0, n, exact, [], solved,
+                             uncertain)
+        a, b, fa, fb, node, L, origin = (v[left] for v in (a, b, fa, fb, node, L, origin))
     while a.size:
         if time.perf_counter() > deadline or a.size > MAX_PENDING:
             raise SearchBudget(f"{a.size} node intervals still unsettled after {evaluations} gap evaluations")
@@ -103,45 +109,86 @@ def certified_crossings(excess, n: int, knots, speed, resolution: float = RESOLU
         leaf = ~settled & (h <= h_min)
         change = leaf & ((fa <= 0) != (fb <= 0))
         if change.any():
-            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
+            brackets.append((a[change], b[change], fa[change], fb[change], node[change], origin[change]))
         split = ~settled & ~leaf
-        stuck = _crowded(split, origin, (a, b, fa, fb, node), brackets)
-        unresolved += int(np.count_nonzero(stuck & ((fa <= 0) == (fb <= 0))))
+        stuck = _crowded(split, origin, MAX_LEAVES if exact is not None else MAX_LEAVES_UNSOLVED)
+        if stuck.any():
+            left = _settle_stuck(stuck, (a, b, fa, fb, node, origin), F <= 0, n, exact, brackets, solved,
+                                 uncertain)
+            unresolved += int(np.count_nonzero(left))
+            np.add.at(uncertain, node[left], h[left])
         split &= ~stuck
         a, b, fa, fb, node, L, origin = (v[split] for v in (a, b, fa, fb, node, L, origin))
-        if not a.size:
-            break
         m = 0.5 * (a + b)
-        fm = excess(m, node)
+        fm = excess(m, node) if m.size else m
         evaluations += m.size
         a, b = np.concatenate([a, m]), np.concatenate([m, b])
         fa, fb = np.concatenate([fa, fm]), np.concatenate([fm, fb])
         node, L, origin = np.concatenate([node, node]), np.concatenate([L, L]), np.concatenate([origin, origin])
-    return _located(F[0] <= 0, brackets, excess, h_min, evaluations, unresolved)
+    found = _located(F[0] <= 0, brackets, solved, excess, h_min, evaluations, n)
+    banded = int(sum(np.count_nonzero(x[5] > 0) for x in solved if len(x) > 5))  # nodes a solver left uncertain
+    return replace(found, unresolved=unresolved + banded, uncertain=uncertain)
 
 
-def _crowded(split, origin, arrays, brackets) -> np.ndarray:
-    """(k,) bool: the intervals of (node, knot interval) pairs holding more than MAX_LEAVES unsettled ones (their
-    gap hovers at the tolerance): not bisected further; those whose ends differ go to ``brackets``."""
+def _knot_pairs(excess, n, knots, speed):
+    """f at every knot (K + 1, n), and the (node, knot interval) pairs: a, b, f(a), f(b), node, origin, bound L."""
+    nodes = np.arange(n)
+    F = excess(np.repeat(knots, n), np.tile(nodes, len(knots))).reshape(len(knots), n)
+    node = np.tile(nodes, len(knots) - 1)
+    L = np.concatenate([np.asarray(speed(j, nodes), dtype=float) for j in range(len(knots) - 1)]) \
+        if len(knots) > 1 else np.zeros(0)
+    return F, (np.repeat(knots[:-1], n), np.repeat(knots[1:], n), F[:-1].ravel(), F[1:].ravel(), node,
+               np.arange(node.size), L)
+
+
+def _crowded(split, origin, most) -> np.ndarray:
+    """(k,) bool: the intervals of (node, knot interval) pairs holding more than ``most`` unsettled ones (their
+    gap hovers at the tolerance): not bisected further."""
     count = np.bincount(origin[split], minlength=int(origin.max()) + 1 if origin.size else 0)
-    stuck = split & (count > MAX_LEAVES)[origin]
-    if stuck.any():
-        a, b, fa, fb, node = arrays
-        change = stuck & ((fa <= 0) != (fb <= 0))
-        if change.any():
-            brackets.append((a[change], b[change], fa[change], fb[change], node[change]))
-    return stuck
+    return split & (count > most)[origin]
 
 
-def _located(initial, brackets, excess, h_min, evaluations, unresolved) -> Crossings:
-    if not brackets:
-        empty = np.zeros(0)
-        return Crossings(initial, empty, empty.astype(np.int64), empty.astype(bool), h_min, evaluations, unresolved)
-    a, b, fa, fb, node = (np.concatenate(parts) for parts in zip(*brackets))
-    roots, calls = batched_roots(excess, node, a, b, fa, fb)
-    order = np.lexsort((node, roots))
-    return Crossings(initial, roots[order], node[order], (fb <= 0)[order], h_min, evaluations + calls, unresolved)
+def _settle_stuck(stuck, arrays, inside, n, exact, brackets, solved, uncertain=None) -> np.ndarray:
+    """Hand the stuck (node, knot interval) pairs to ``exact``; (k,) bool: the stuck intervals it could not solve
+    (their brackets are kept, their length counted as uncertain). A solver may return a fourth array, the length
+    of θ on which each node's state stays uncertain (added to ``uncertain``)."""
+    a, b, fa, fb, node, origin = arrays
+    left = stuck.copy()
+    if exact is not None:
+        pairs = np.unique(origin[stuck])
+        for j in np.unique(pairs // n):
+            ids = pairs[pairs // n == j] % n
+            got = exact(int(j), ids, inside[j, ids], inside[j + 1, ids])
+            if got is None:
+                continue
+            theta, who, state = got[:3]
+            solved.append((theta, who, state, np.full(len(theta), int(j)), j * n + ids) + tuple(got[3:]))
+            left &= ~np.isin(origin, j * n + ids)
+            if len(got) > 3 and uncertain is not None:
+                uncertain[ids] += got[3]
+    change = left & ((fa <= 0) != (fb <= 0))
+    if change.any():
+        brackets.append((a[change], b[change], fa[change], fb[change], node[change], origin[change]))
+    return left
 
+
+def _located(initial, brackets, solved, excess, h_min, evaluations, n) -> Crossings:
+    empty = np.zeros(0)
+    theta, node, state, key = empty, empty.astype(np.int64), empty.astype(bool), empty.astype(np.int64)
+    calls = 0
+    if brackets:
+        a, b, fa, fb, node, origin = (np.concatenate(parts) for parts in zip(*brackets))
+        if solved:  # brackets found before a pair was solved exactly: the exact answer replaces them
+            keep = ~np.isin(origin, np.concatenate([s[4] for s in solved]))
+            a, b, fa, fb, node, origin = (v[keep] for v in (a, b, fa, fb, node, origin))
+        theta, calls = batched_roots(excess, node, a, b, fa, fb)
+        state, key = fb <= 0, origin // max(n, 1)
+    if solved:
+        theta, node, state, key = (np.concatenate([x] + [s[i] for s in solved])
+                                   for i, x in enumerate((theta, node, state, key)))
+    order = np.lexsort((node, key, theta))  # same θ: a knot's end before the next interval's start
+    return Crossings(initial, theta[order], node[order].astype(np.int64), state[order].astype(bool), h_min,
+                     evaluations + calls)
 
 def batched_roots(excess, nodes, a, b, fa, fb, iterations=200):
     """Roots of f_i(θ) = 0 in brackets [a, b] with f(a), f(b) of opposite states, many pairs at once (Illinois

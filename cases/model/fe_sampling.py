@@ -289,7 +289,7 @@ def _assembled(fe, records, node_records, corners, sizes, last, t_end, exact, ma
     nodes = Crossings(node0, cat(n_theta, float), cat(n_ids, np.int64), cat(n_states, bool), fe.step)
     evaluations = exact.evaluations + (main.queries if main is not None else 0)
     return SampledFlags(corner0, cat(theta, float), cat(ids, np.int64), cat(states, bool), fe.step, evaluations,
-                        exact.unresolved, nodes, corners, sizes.astype(float), fe.sdfblk, fe)
+                        exact.unresolved, exact.uncertain, nodes, corners, sizes.astype(float), fe.sdfblk, fe)
 
 
 def fe_leak_track(scene, j, exact: Crossings, surface, path, weights, driver, options: dict):

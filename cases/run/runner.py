@@ -82,6 +82,11 @@ def _budget_key(message: str) -> str:
     return "limits.steps" if message.startswith("more than ") and " steps before " in message else ""
 
 
+def strict_scene(scene: Scene) -> Scene:
+    """The scene with ``[blockage] strict = true``."""
+    return replace(scene, blockage=replace(scene.blockage, strict=True))
+
+
 def run(model: Model, *, progress: bool = False, max_wall: float | None = None) -> Results:
     """Integrate a built model and reduce it; ``max_wall`` [s] overrides the scene's ``limits.wall``.
 
@@ -202,7 +207,10 @@ def impactor_summary(model: Model, traj: Trajectory) -> dict:
             "final speed [m/s]": float(ys[-1, k + 1])}
 
 
-def run_scene(path_or_scene, *, progress: bool = False, max_wall: float | None = None) -> Results:
-    """Load (if given a path), build and run a scene (``max_wall``: see :func:`run`)."""
+def run_scene(path_or_scene, *, progress: bool = False, max_wall: float | None = None, strict: bool = False) -> Results:
+    """Load (if given a path), build and run a scene (``max_wall``: see :func:`run`; ``strict``: as the scene's
+    ``[blockage] strict``, a contact interval that cannot be certified is an error)."""
     scene = path_or_scene if isinstance(path_or_scene, Scene) else load_scene(path_or_scene)
+    if strict:
+        scene = strict_scene(scene)
     return run(build_model(scene), progress=progress, max_wall=max_wall)

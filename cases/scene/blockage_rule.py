@@ -43,6 +43,9 @@ class BlockageSpec:
     blocked_leak_fraction: float = key("fraction of blocked fabric that still leaks (LS-DYNA ELA, Radioss AC') "
                                        "for the fabric-law exchanges; omitted: each exchange's permeability",
                                        default=None, check="fraction")
+    strict: bool = key("true: a run whose contact intervals are not all certified (a rotating or deforming "
+                        "blocker hovering near the tolerance) stops with an error instead of a warning; also "
+                        "`ventsim run --strict`", default=False)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -135,8 +135,6 @@ def _check_exchange(scene: Scene, e: ExchangeSpec, path, where: str) -> None:
         raise SceneError(path, f"{where}.edge_contact", "a node-based leakage surface has no edges")
     if e.blocked_by and not geometric:
         raise SceneError(path, f"{where}.blocked_by", "needs leakage_surface or leakage_box")
-    if geometric and e.blocked_by and not e.contact_tolerance > 0:
-        raise SceneError(path, f"{where}.contact_tolerance", "expected a tolerance > 0 [m] with blocked_by")
     if geometric and e.area:
         raise SceneError(path, f"{where}.area", "the area comes from the leakage surface: use effective_area")
     if not geometric and not e.area > 0:
