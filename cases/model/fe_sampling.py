@@ -307,6 +307,11 @@ def fe_leak_track(scene, j, exact: Crossings, surface, path, weights, driver, op
         faces, sizes = np.asarray(surface.faces), np.asarray(surface.face_sizes)
         faces = np.pad(faces, ((0, 0), (0, 4 - faces.shape[1])), constant_values=-1)
         corner_w, total = np.repeat(surface.face_areas / sizes, sizes), surface.total_area
+    if driver.dynamic is not None:  # θ = s: the rule's area along s, sampled in time by the engine
+        from cases.model.fe_dynamic import dynamic_fe_track
+
+        return dynamic_fe_track(scene, j, exact, path.x0, faces, sizes, corner_w, total, driver, options,
+                                node_based=surface is None)
     fe = fe_rule(spec, node_based=surface is None)
     main = None
     if fe.side != "secondary" and e.blocked_by:
