@@ -165,16 +165,16 @@ def rule_flags_along(fe, exact: Crossings, faces, face_sizes, main=None, fixed=N
                         exact.evaluations, exact.unresolved, exact, corners, sizes.astype(float), fe.sdfblk, fe)
 
 
-def dynamic_fe_track(scene, j, exact: Crossings, x_leak, faces, sizes, corner_w, total, driver, options,
-                     node_based: bool = False) -> SampledTrack:
+def dynamic_fe_track(scene, j, exact: Crossings, surface, x_leak, weights, driver, options) -> SampledTrack:
     """The :class:`SampledTrack` of exchange j under the scene's FE rule with the dynamic body (θ = s): the rule's
-    corner crossings along s (:func:`rule_flags_along`, main segments of the leakage surface on nodes ``x_leak``
-    by :func:`main_segments_along`), each corner weighing ``corner_w``, then the flagless interval after a last
-    crossing at +inf."""
-    from cases.model.fe_sampling import fe_rule, rule_blocks, sampled_permeability
+    corner crossings along s (:func:`rule_flags_along`, main segments of the leakage ``surface`` on its nodes
+    ``x_leak`` by :func:`main_segments_along`; None: node-based, of node ``weights``), each corner weighing A_e/N_e,
+    then the flagless interval after a last crossing at +inf."""
+    from cases.model.fe_sampling import fe_rule, rule_blocks, rule_faces, sampled_permeability
 
     spec, e = scene.blockage, scene.exchange[j]
-    fe = fe_rule(spec, node_based=node_based)
+    faces, sizes, corner_w, total = rule_faces(surface, weights, len(x_leak))
+    fe = fe_rule(spec, node_based=surface is None)
     main, fixed = None, None
     if fe.side != "secondary" and e.blocked_by:
         tree = LeakTree(x_leak, faces, sizes)
