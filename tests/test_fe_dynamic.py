@@ -136,3 +136,24 @@ def test_node_counting_rules_converge_to_exact_at_least_linearly_in_the_step(tmp
         assert 0.0 < distances[-1] <= exact.open_area(0.0) * step * len(exact.crossings)
         assert abs(blocked_area_time(sampled, 0.0, END) - blocked_area_time(exact, 0.0, END)) <= distances[-1]
     assert all(b <= 0.75 * a for a, b in zip(distances, distances[1:]))
+
+
+def test_the_main_segments_along_s_replay_the_segments_of_each_pose(tmp_path):
+    """:func:`main_segments_along` (a grid, then bisection) against the naive query of every node at 400 random
+    poses, the fine plate's nodes over the vent (they enter, change face and leave)."""
+    from blockage.fe_rules import LeakTree
+    from cases.model.fe_dynamic import main_segments_along
+
+    grid_vent(tmp_path / "vent.obj")
+    vent = blockage.LeakageSurface.read(tmp_path / "vent.obj")
+    x = tilted_plate().subdivide_to_size(0.0045).vertices
+    axis = np.array([0.0, 0.0, -1.0])
+    tree = LeakTree(vent.vertices, vent.faces, vent.face_sizes)
+    lo, hi = -1e-4, 6e-3
+    initial, s, node, seg = main_segments_along(tree, x, axis, lo, hi, TOL)
+    assert len(s) > 20 and np.all(np.diff(s) >= 0)
+    for pose in np.random.default_rng(1).uniform(lo, hi, 400):
+        now = initial.copy()
+        k = np.searchsorted(s, pose, side="right")
+        now[node[:k]] = seg[:k]
+        np.testing.assert_array_equal(now, tree.segments(x + pose * axis, TOL))

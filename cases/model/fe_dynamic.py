@@ -6,8 +6,9 @@ secondary nodes are the exact rule's active nodes at s (they change at the exact
 along s), and the main segments are the leakage faces nearest to the body's nodes in contact (each node's segment
 changes where it enters or leaves contact, or its nearest face changes). So the rule's area is constant between
 the union of those displacements: its crossings along s. The main segments' changes are found node by node on a
-grid of s (a quarter of the contact tolerance: a node stays in contact over at least twice the tolerance of travel
-unless it grazes an edge of the surface) and located by bisection to the last bit of s.
+grid of s (a quarter of the contact tolerance, at most MAX_GRID points over the travel: a node stays in contact over
+at least twice the tolerance of travel unless it grazes an edge of the surface) and located by bisection to the
+last bit of s.
 
 The track's last crossing is +inf and its last area the flagless one: the engine uses it before cycle n of a rule
 with a lag of n cycles.
@@ -27,6 +28,8 @@ __all__ = ["SampledTrack", "main_segments_along", "rule_flags_along", "dynamic_f
 
 #: Grid spacing of the main-segment search along s, in contact tolerances.
 GRID_TOLERANCES = 0.25
+#: Most grid points of that search over the body's travel (a zero tolerance: contact only behind the surface).
+MAX_GRID = 20000
 #: Bisection steps locating a main segment's change (the bracket shrinks below the last bit of s).
 BISECTIONS = 64
 
@@ -65,7 +68,7 @@ def main_segments_along(tree: LeakTree, x, axis, lo: float, hi: float, tolerance
     pts = tree.blocker.vertices
     reach = 2.0 * max(tolerance, open_depth) + 1e-12 * float(np.ptp(pts, axis=0).max() + hi - lo)
     a, b = _range_in_box(x, axis, lo, hi, pts.min(axis=0) - reach, pts.max(axis=0) + reach)
-    h = GRID_TOLERANCES * max(tolerance, open_depth) if tolerance > 0 else (hi - lo) / 1000
+    h = max(GRID_TOLERANCES * max(tolerance, open_depth), (hi - lo) / MAX_GRID)
     grid = np.linspace(lo, hi, max(int(np.ceil((hi - lo) / h)), 1) + 1)
     initial = np.full(len(x), -1, dtype=np.int64)
     near = np.flatnonzero(a <= b)
