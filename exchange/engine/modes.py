@@ -3,8 +3,9 @@ fires, and the state recorded per segment.
 
 The state lives in the model: ``M.equalised`` (1 while an exchange is held closed), ``M.open_state``
 (:class:`~exchange.engine.layout.OpenState`), ``M.hold_start`` (a pop vent's hold, NaN: not holding),
-``M.interval`` (the dynamic body's area interval per exchange), ``seat_state[HELD]`` and each volume spline's held
-piece (``CavityInt.PIECE``); a pop sets the vent's area at activation.
+``M.interval`` (the dynamic body's area interval per exchange; an FE rule's sampled flags also keep the interval
+holding s now and their queue of samples in ``M.sampling``, :mod:`exchange.engine.sampled`), ``seat_state[HELD]``
+and each volume spline's held piece (``CavityInt.PIECE``); a pop sets the vent's area at activation.
 """
 from __future__ import annotations
 
@@ -16,8 +17,9 @@ from numba import njit
 from .body import seat_event, seat_watched
 from .flows import base_area
 from .sampled import apply_head, crossing_count, move_tracked, tracked_interval
-from .layout import (KNOT_SLACK, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState,
-                     SamplingColumn, SegmentColumn, SwitchKind, TableColumn, VolumeKind, AreaKind, is_seat_switch, segment_blocks)
+from .layout import (KNOT_SLACK, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SamplingColumn,
+                     SeatState, SegmentColumn, SwitchKind, TableColumn, VolumeKind, AreaKind, is_seat_switch,
+                     segment_blocks)
 
 __all__ = ["watched", "on_event", "record_segment", "rederive_intervals", "lock_pieces"]
 
