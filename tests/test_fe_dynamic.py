@@ -157,3 +157,15 @@ def test_the_main_segments_along_s_replay_the_segments_of_each_pose(tmp_path):
         k = np.searchsorted(s, pose, side="right")
         now[node[:k]] = seg[:k]
         np.testing.assert_array_equal(now, tree.segments(x + pose * axis, TOL))
+
+
+def test_scipys_integrator_samples_the_same_cycles(tmp_path):
+    """solve_ivp stepping the same kernels (a second implementation of the segment loop) uses the same samples."""
+    tracks = []
+    for integrator in ("compiled", "scipy"):
+        data = dynamic_data(tmp_path, rule="abaqus", step=5e-4, lag_cycles=1)
+        data["solver"]["integrator"] = integrator
+        tracks.append(vent_track(run(build_model(scene_from_dict(data, tmp_path / "scene.toml")))))
+    np.testing.assert_array_equal(tracks[0].crossings, tracks[1].crossings)
+    np.testing.assert_array_equal(tracks[0].areas, tracks[1].areas)
+    assert len(tracks[0].crossings) >= 8
