@@ -138,6 +138,10 @@ class AreaTrack:
         """(n,) bool: the active nodes at θ (right limit at a crossing), from the crossings found."""
         return self.source.active_at(theta)
 
+    def start_interval(self, theta: float = 0.0) -> int:
+        """The interval a run starts in when θ is the dynamic body's displacement: the one holding θ."""
+        return self.interval(theta)
+
     def interval(self, theta: float) -> int:
         return bisect.bisect_right(self.crossings, theta)
 

@@ -190,7 +190,11 @@ def build_leak_area(scene, j, cavity_meshes: dict, driver, series=None):
                      surface.edges if e.edge_contact else None)
     knots = _knots(driver, path, driver.lo, driver.hi)
     found = _search(scene, j, field, len(path.x0), knots, weights, "s" if driver.dynamic is None else "m")
-    if scene.blockage.rule != "exact":  # an FE code's rule: flags sampled at its time steps, used with its lag
+    if scene.blockage.rule != "exact" and driver.dynamic is not None:  # the rule's area along s, sampled in time
+        from cases.model.fe_dynamic import dynamic_fe_track                # by the engine
+
+        track = dynamic_fe_track(scene, j, found, surface, path.x0, weights, driver, options)
+    elif scene.blockage.rule != "exact":  # an FE code's rule: flags sampled at its time steps, used with its lag
         from cases.model.fe_sampling import fe_leak_track
 
         track = fe_leak_track(scene, j, found, surface, path, weights, driver, options)

@@ -27,7 +27,7 @@ from blockage.fe_rules import LeakTree, blocks_exchange, default_lag, default_si
 from cases.model.crossings import Crossings
 
 __all__ = ["FeRule", "SampledFlags", "sampled_flags", "sample_index", "MainSegments", "corner_faces", "fe_rule",
-           "sampled_permeability"]
+           "sampled_permeability", "rule_faces"]
 
 
 @dataclass(frozen=True)
@@ -292,6 +292,18 @@ def _assembled(fe, records, node_records, corners, sizes, last, t_end, exact, ma
                         exact.unresolved, exact.uncertain, nodes, corners, sizes.astype(float), fe.sdfblk, fe)
 
 
+def rule_faces(surface, weights, n: int) -> tuple:
+    """(faces (m, 4) int padded with -1, face sizes (m,), corner weights A_e/N_e (corners,) [m^2], total area
+    [m^2]) of a leakage surface; a node-based one (``surface`` None, n nodes of ``weights``): one single-node face
+    per node, of its own weight."""
+    if surface is None:
+        faces, sizes = np.pad(np.arange(n)[:, None], ((0, 0), (0, 3)), constant_values=-1), np.ones(n, np.int64)
+        return faces, sizes, np.asarray(weights, dtype=float), float(np.sum(weights))
+    faces, sizes = np.asarray(surface.faces), np.asarray(surface.face_sizes)
+    faces = np.pad(faces, ((0, 0), (0, 4 - faces.shape[1])), constant_values=-1)
+    return faces, sizes, np.repeat(surface.face_areas / sizes, sizes), surface.total_area
+
+
 def fe_leak_track(scene, j, exact: Crossings, surface, path, weights, driver, options: dict):
     """The :class:`cases.model.area_track.AreaTrack` of exchange j under the scene's FE rule: the sampled corner
     crossings of the exact ones, each corner weighing A_e/N_e of its face (a node-based surface: one corner per
@@ -300,13 +312,7 @@ def fe_leak_track(scene, j, exact: Crossings, surface, path, weights, driver, op
 
     spec, e = scene.blockage, scene.exchange[j]
     n = len(path.x0)
-    if surface is None:  # node-based: one single-node face per node
-        faces, sizes = np.pad(np.arange(n)[:, None], ((0, 0), (0, 3)), constant_values=-1), np.ones(n, np.int64)
-        corner_w, total = np.asarray(weights, dtype=float), float(np.sum(weights))
-    else:
-        faces, sizes = np.asarray(surface.faces), np.asarray(surface.face_sizes)
-        faces = np.pad(faces, ((0, 0), (0, 4 - faces.shape[1])), constant_values=-1)
-        corner_w, total = np.repeat(surface.face_areas / sizes, sizes), surface.total_area
+    faces, sizes, corner_w, total = rule_faces(surface, weights, n)
     fe = fe_rule(spec, node_based=surface is None)
     main = None
     if fe.side != "secondary" and e.blocked_by:

@@ -28,7 +28,7 @@ def lowered_geometry(net) -> Geometry | str:
                    "dynamic body"
         areas[j] = AreaSteps(np.asarray(track.crossings, dtype=float), track.areas,
                              track.scale if track.effective_area is None else None, not ga.by_time,
-                             max(track.total_area ** 0.5, 1e-6), track.moving)
+                             max(track.total_area ** 0.5, 1e-6), track.moving, getattr(track, "sampling", None))
     for i, cav in enumerate(net.cavities):
         if hasattr(cav.volume, "spline"):
             spline = cav.volume.spline

@@ -95,7 +95,7 @@ class SceneNetwork(Network):
             self.body_state.s, self.body_state.v = 0.0, self.body.motion.initial_velocity
         for j, ga in enumerate(self.areas):
             if ga is not None and not ga.by_time:
-                self.intervals[j] = int(np.searchsorted(ga.track.crossings, 0.0, side="right"))
+                self.intervals[j] = int(ga.track.start_interval(0.0))
 
     @property
     def body_offset(self) -> int:

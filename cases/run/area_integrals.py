@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["breakpoints", "leak_area_time", "blocked_area_time", "area_distance"]
+__all__ = ["breakpoints", "leak_area_time", "blocked_area_time", "area_distance", "TimeSteps", "time_steps"]
 
 _X, _W = np.polynomial.legendre.leggauss(5)
 
@@ -81,3 +81,39 @@ def _open_time(track, t0: float, t1: float) -> float:
 def area_distance(a, b, t0: float, t1: float) -> float:
     """∫ |A_a − A_b| dt over [t0, t1] [m^2·s]: how far apart two tracks of the same exchange are."""
     return _integral([a, b], t0, t1, lambda v: abs(v[0] - v[1]))
+
+
+class TimeSteps:
+    """A leakage area that is a step function of time: ``times`` (k,) [s] where it changes, ``areas`` (k + 1,)
+    [m^2] before, between and after them, ``open`` [m^2] the area with nothing blocked. It reads as an area track of
+    time (crossings, interval, area_in, open_area), for the integrals above."""
+
+    frame_times, scale, moving = np.zeros(0), None, None
+
+    def __init__(self, times, areas, open_area: float):
+        self.crossings, self.areas = np.asarray(times, dtype=float), np.asarray(areas, dtype=float)
+        self._open = float(open_area)
+
+    def interval(self, t: float) -> int:
+        return int(np.searchsorted(self.crossings, t, side="right"))
+
+    def area_in(self, i: int, t: float) -> float:
+        return float(self.areas[i])
+
+    def __call__(self, t: float) -> float:
+        return self.area_in(self.interval(t), t)
+
+    def open_area(self, t: float) -> float:
+        return self._open
+
+
+def time_steps(track, trajectory, j: int) -> TimeSteps:
+    """The area of exchange j in time from a run's ``trajectory`` when its ``track`` is one of the dynamic body's
+    displacement (the area interval of each segment's discrete state; an FE rule's the interval in use)."""
+    times, idx = [], []
+    for seg, mode in zip(trajectory.segments, trajectory.modes):
+        if mode is not None and (not idx or mode.intervals[j] != idx[-1]):
+            times.append(float(seg.t_min))
+            idx.append(mode.intervals[j])
+    areas = track.areas[idx] if idx else np.array([track.open_area(0.0)])
+    return TimeSteps(times[1:], areas, track.open_area(0.0))

@@ -21,7 +21,7 @@ from blockage.fe_rules import RULES
 from cases.run.area_integrals import area_distance, blocked_area_time
 from cases.scene.errors import SceneError
 
-__all__ = ["RuleRun", "run_rule", "rule_row", "comparison", "sweep_rows", "write_rows", "format_table",
+__all__ = ["RuleRun", "run_rule", "time_tracks", "rule_row", "comparison", "sweep_rows", "write_rows", "format_table",
            "parse_rules", "parse_steps"]
 
 
@@ -88,12 +88,18 @@ def run_rule(path: Path, data: dict, rule: str, step: float | None, lag: int | N
     return RuleRun(rule, fe.step if rule != "exact" else 0.0, fe.lag if rule != "exact" else 0, results)
 
 
-def _tracks(results) -> dict:
-    """{exchange name: area track} of the blocked exchanges of a run."""
+def time_tracks(results) -> dict:
+    """{exchange name: its leakage area as a track of time} of the blocked exchanges of a run: the area track itself
+    with prescribed motion, the steps the run took (:func:`cases.run.area_integrals.time_steps`) with a dynamic
+    body."""
+    from cases.run.area_integrals import time_steps
+
     geo = results.model.geometry
     if geo is None:
         return {}
-    return {results.model.network.exchanges[j].name: ga.track for j, ga in enumerate(geo["areas"]) if ga is not None}
+    names = [e.name for e in results.model.network.exchanges]
+    return {names[j]: ga.track if ga.by_time else time_steps(ga.track, results.trajectory, j)
+            for j, ga in enumerate(geo["areas"]) if ga is not None}
 
 
 def leak_mass(results) -> float:
@@ -105,7 +111,7 @@ def leak_mass(results) -> float:
 def rule_row(run: RuleRun, exact: RuleRun | None) -> dict:
     """One row of the table (see the module docstring)."""
     t_end = run.results.model.scene.time.end
-    tracks, ref = _tracks(run.results), _tracks(exact.results) if exact is not None else {}
+    tracks, ref = time_tracks(run.results), time_tracks(exact.results) if exact is not None else {}
     row = {"rule": run.rule, "step [s]": run.step, "lag [cycles]": run.lag,
            "blocked area*time [m^2 s]": sum(blocked_area_time(tr, 0.0, t_end) for tr in tracks.values()),
            "|A - A_exact| area*time [m^2 s]": sum(area_distance(tr, ref[n], 0.0, t_end) for n, tr in tracks.items()

@@ -20,7 +20,7 @@ def compare(scene_path, rules: list, out, *, step=None, lag=None, sweep=(), say=
     from cases.results.compare_plots import plot_face_difference, plot_histories, plot_sweep, worst_instant
     from cases.results.fe_pressure import scene_fe_pressures
     from cases.results.output import output_set
-    from cases.run.compare import comparison, fe_rows, format_table, run_rule, sweep_rows, write_rows
+    from cases.run.compare import comparison, fe_rows, time_tracks, format_table, run_rule, sweep_rows, write_rows
     from cases.scene.errors import SceneError
     from cases.scene.files import load_scene, read_scene_data
 
@@ -50,8 +50,9 @@ def compare(scene_path, rules: list, out, *, step=None, lag=None, sweep=(), say=
             for j, ga in enumerate(tracks):
                 if ga is None:
                     continue
-                t, _ = worst_instant(run.results.model.network.areas[j].track, ga.track, base.time.end)
                 name = exact.results.model.network.exchanges[j].name
+                t, _ = worst_instant(time_tracks(run.results)[name], time_tracks(exact.results)[name],
+                                     base.time.end)
                 picture = stage / f"faces_{name}_{run.rule}.png"
                 plot_face_difference(picture, run, exact, j, t)
                 paths[f"faces {name} {run.rule}"] = picture

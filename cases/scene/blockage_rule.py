@@ -74,11 +74,6 @@ def check_blockage(scene, path) -> None:
         if scene.time.end / b.step > MAX_SAMPLES:
             raise SceneError(path, f"{where}.step", f"time.end / step = {scene.time.end / b.step:.3g} samples, more "
                                                     f"than {MAX_SAMPLES:g}: give a larger step")
-        dynamic = [x.name for x in scene.body if x.mass]
-        if dynamic:
-            raise SceneError(path, f"{where}.rule", f"rule {b.rule!r} with the dynamic body {dynamic[0]!r}: FE rules "
-                                                    "are replayed on prescribed motion only (mesh series, tables, "
-                                                    "trajectories); use rule = 'exact'")
     if not b.sdfblk > 0:
         raise SceneError(path, f"{where}.sdfblk", f"expected a factor in (0, 1], got {b.sdfblk!r}")
     _check_parts(scene, path)

@@ -14,6 +14,7 @@ from cavity.integration import NO_TEMPERATURE
 from exchange.network.discrete_state import DiscreteState
 
 from .host import host_of
+from .sampled import reset_sampling
 from .segments import modes_of
 from .inflators import warn_clamped
 from .layout import (UNLOCKED, AreaKind, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState, SegmentColumn,
@@ -125,6 +126,7 @@ class Engine:
         a, net = self.arrays, self.network
         a.interval[:] = [i if i is not None else 0 for i in getattr(net, "intervals", [0] * len(net.exchanges))]
         a.seat_state[SeatState.HELD] = float(bool(getattr(net, "held", False)))
+        reset_sampling(a)
         self.unlock_pieces()  # the segment start locks one (exchange.engine.modes.lock_pieces)
         ei, ef = a.exchange_int, a.exchange_float
         for j in range(len(net.exchanges)):
@@ -135,7 +137,8 @@ class Engine:
             base = net.area_at_activation[j]
             if pop_vent:
                 ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = base or 0.0
-            elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY:
+            elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.AREA] in (AreaKind.STEPS_OF_BODY,
+                                                                               AreaKind.SAMPLED_OF_BODY):
                 ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = math.nan if base is None else base
 
     def segment_mode(self, code) -> DiscreteState:

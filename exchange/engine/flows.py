@@ -26,7 +26,8 @@ EI, EF = ExchangeInt, ExchangeFloat
 @njit(cache=True)
 def base_area(M, j, t):
     """Leakage area of exchange j before activation [m^2] (:meth:`exchange.network.network.Network.base_area`): the
-    constant, a step table of time, or the area of the dynamic body's interval ``M.interval[j]``, times the square
+    constant, a step table of time, or the area of the dynamic body's interval ``M.interval[j]`` (of an FE rule's
+    sampled flags: the interval in use, :mod:`exchange.engine.sampled`), times the square
     of its mesh scale; of a surface on a vertex trajectory the step table gives the interval of the active set and
     the next table holds the pack of :func:`blockage.moving_area.moving_leak_area`."""
     ei, tx, ty, ti = M.exchange_int, M.table_x, M.table_y, M.table_index
@@ -34,7 +35,7 @@ def base_area(M, j, t):
     if kind == AreaKind.MOVING_SURFACE:
         s, n = ti[k + 1, TableColumn.START], ti[k + 1, TableColumn.ROWS]
         return moving_leak_area(ty[s:s + n], int(step_value(tx, ty, ti, k, t)), t)
-    if kind == AreaKind.STEPS_OF_BODY:
+    if kind == AreaKind.STEPS_OF_BODY or kind == AreaKind.SAMPLED_OF_BODY:
         base = ty[ti[k, TableColumn.START] + M.interval[j]]
     elif k >= 0:
         base = step_value(tx, ty, ti, k, t)

@@ -16,7 +16,9 @@ class AreaSteps:
     """A blocked leakage area, piecewise constant between its crossings: ``crossings`` (k,) [s, or m of the dynamic
     body's displacement when ``by_body``], ``areas`` (k + 1,) [m^2] before the first crossing, between and after;
     ``scale`` a mesh scale table of time (area × s², None); ``switch_scale`` [m] of its crossings' switches; ``moving``
-    the pack of :func:`blockage.moving_area.moving_leak_area` of a surface on a vertex trajectory (None)."""
+    the pack of :func:`blockage.moving_area.moving_leak_area` of a surface on a vertex trajectory (None);
+    ``sampling`` (step [s], lag [cycles]) of an FE rule's flags sampled from the dynamic body (None: exact; its last
+    crossing is +inf, its area the flagless one: :mod:`exchange.engine.sampled`)."""
 
     crossings: np.ndarray
     areas: np.ndarray
@@ -24,6 +26,7 @@ class AreaSteps:
     by_body: bool = False
     switch_scale: float = 1.0
     moving: np.ndarray | None = None
+    sampling: tuple | None = None
 
 
 @dataclass(frozen=True)

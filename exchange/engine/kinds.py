@@ -39,6 +39,7 @@ class AreaKind(IntEnum):
     STEPS_OF_TIME = 1  # a blocked leakage area with prescribed motion
     STEPS_OF_BODY = 2  # blocked by the dynamic body: per interval of its displacement
     MOVING_SURFACE = 3  # a leakage surface on a vertex trajectory (blockage.moving_area)
+    SAMPLED_OF_BODY = 4  # an FE rule's area of the dynamic body's displacement, sampled at its time steps (sampled.py)
 
 
 class InflatorKind(IntEnum):
@@ -91,6 +92,7 @@ class SwitchKind(IntEnum):
     KNOT_DOWN = 14  # ... below
     SEAT = 15  # hard contact: lift-off while held, impact while free
     SEAT_KINK = 16  # a kink of the seat's force
+    SAMPLE = 17  # an FE rule's sampled flags coming into use at their cycle (a function of time)
 
 
 #: The label of each switch kind in the event log (``<exchange>:<label>``; a law kink's ``kink<row>``, a seat kink's
@@ -100,7 +102,8 @@ SWITCH_LABELS = {SwitchKind.CHOKE: "choke", SwitchKind.JOIN: "join", SwitchKind.
                  SwitchKind.POP: "pop", SwitchKind.POP_DROP: "pop-drop", SwitchKind.POP_HOLD: "pop-hold",
                  SwitchKind.CLOSE: "close", SwitchKind.TURN: "turn", SwitchKind.CROSSING_UP: "contact-up",
                  SwitchKind.CROSSING_DOWN: "contact-down", SwitchKind.KNOT_UP: "knot-up",
-                 SwitchKind.KNOT_DOWN: "knot-down", SwitchKind.SEAT: "seat", SwitchKind.SEAT_KINK: "kink-"}
+                 SwitchKind.KNOT_DOWN: "knot-down", SwitchKind.SEAT: "seat", SwitchKind.SEAT_KINK: "kink-",
+                 SwitchKind.SAMPLE: "sample"}
 
 
 @njit(cache=True)
@@ -126,8 +129,8 @@ def is_seat_switch(kind):
 @njit(cache=True)
 def one_way_direction(kind):
     """+1 or −1 for a switch the body's displacement can cross in one direction only (it leaves its interval or
-    spline piece through that end), 0 for the others."""
-    if kind == SwitchKind.CROSSING_UP or kind == SwitchKind.KNOT_UP:
+    spline piece through that end) or time crosses (an FE rule's sample), 0 for the others."""
+    if kind == SwitchKind.CROSSING_UP or kind == SwitchKind.KNOT_UP or kind == SwitchKind.SAMPLE:
         return 1.0
     if kind == SwitchKind.CROSSING_DOWN or kind == SwitchKind.KNOT_DOWN:
         return -1.0

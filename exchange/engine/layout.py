@@ -31,7 +31,7 @@ from .kinds import (SWITCH_LABELS, AreaKind, Energy, Fluid, InflatorKind, KinkVa
 
 __all__ = ["Model", "ModelArrays", "new_model", "LAW_SIGNATURE", "LAW_SLOTS", "TableColumn", "CavityInt",
            "CavityFloat", "InflatorInt", "InflatorFloat", "ExchangeInt", "ExchangeFloat", "StateColumn",
-           "AmbientColumn", "BodyColumn", "SeatState", "SeatNode", "SeatLaw", "KinkColumn", "SegmentColumn", "segment_blocks", "Energy", "Fluid", "VolumeKind",
+           "AmbientColumn", "BodyColumn", "SeatState", "SeatNode", "SeatLaw", "KinkColumn", "SamplingColumn", "SegmentColumn", "segment_blocks", "Energy", "Fluid", "VolumeKind",
            "AreaKind", "InflatorKind", "OpenState", "open_state_of", "flags_of", "SwitchKind", "KinkVariable", "Status", "SWITCH_LABELS",
            "side", "is_kink", "is_body_switch", "is_seat_switch", "one_way_direction", "UNLOCKED", "KNOT_SLACK", "LAW_LOAD"]
 
@@ -179,6 +179,17 @@ class KinkColumn(IntEnum):
     VARIABLE = 1  # KinkVariable
 
 
+class SamplingColumn(IntEnum):
+    """Columns of ``sampling``, one row per exchange whose area is an FE rule's flags sampled from the dynamic body
+    (AreaKind.SAMPLED_OF_BODY, :mod:`exchange.engine.sampled`); after QUEUE come the pending samples, two columns
+    each: the sample time t_k [s] and the area interval its flags give (used from t_k + lag·step on)."""
+    STEP = 0  # the explicit time step [s]
+    LAG = 1  # cycles between a sample and its use
+    CURRENT = 2  # the area interval holding the body's displacement now (the crossings switches move it)
+    COUNT = 3  # pending samples
+    QUEUE = 4
+
+
 class SegmentColumn(IntEnum):
     """Columns of the engine's segment table (one row per segment: :func:`exchange.engine.modes.record_segment`);
     after EQUALISED come, per exchange, its open state, then its hold start [s], then the dynamic body's area
@@ -262,6 +273,7 @@ FIELDS = (
     ("open_state", _i1, "OpenState (ne,)"),
     ("hold_start", _f1, "start of a pop vent's hold [s], NaN: not holding (ne,)"),
     ("interval", _i1, "the dynamic body's area interval of each exchange (ne,)"),
+    ("sampling", _f2, "FE rules' sampled flags of the dynamic body (ne, SamplingColumn + 2 per pending sample)"),
     ("body", _f1, "the dynamic body (BodyColumn)"),
     ("seat_state", _f1, "(SeatState)"),
     ("seat_law", _f1, "the seat's law vector (SeatLaw)"),
@@ -294,7 +306,7 @@ ModelArrays = NamedTuple("ModelArrays", [(name, object) for name, _, _ in FIELDS
 def _new(gas_rows, gas_breaks, gas_linear, molar_masses, table_x, table_y, table_index, cavity_int, cavity_float,
          inflator_int, inflator_float, inflator_rows, exchange_int, exchange_float, law_int, law_float, laws,
          kink_int, kink_x, ambient, ledger, temperature_guess, state, moles, row, equalised, open_state, hold_start,
-         interval, body, seat_state, seat_law, seat_nodes, seat_kinks, switch_kind, switch_target):
+         interval, sampling, body, seat_state, seat_law, seat_nodes, seat_kinks, switch_kind, switch_target):
     m = structref.new(MODEL_TYPE)
     m.gas_rows, m.gas_breaks, m.gas_linear, m.molar_masses = gas_rows, gas_breaks, gas_linear, molar_masses
     m.table_x, m.table_y, m.table_index = table_x, table_y, table_index
@@ -305,6 +317,7 @@ def _new(gas_rows, gas_breaks, gas_linear, molar_masses, table_x, table_y, table
     m.kink_int, m.kink_x, m.ambient, m.ledger = kink_int, kink_x, ambient, ledger
     m.temperature_guess, m.state, m.moles, m.row = temperature_guess, state, moles, row
     m.equalised, m.open_state, m.hold_start, m.interval = equalised, open_state, hold_start, interval
+    m.sampling = sampling
     m.body, m.seat_state, m.seat_law, m.seat_nodes, m.seat_kinks = body, seat_state, seat_law, seat_nodes, seat_kinks
     m.switch_kind, m.switch_target = switch_kind, switch_target
     return m

@@ -24,6 +24,7 @@ from .inflators import INFLATOR_KINDS, lower_inflators
 from .layout import (LAW_SLOTS, UNLOCKED, AreaKind, BodyColumn, CavityFloat, CavityInt, Energy, ExchangeFloat,
                      ExchangeInt, Fluid, ModelArrays, SeatLaw, SeatNode,
                      SeatState, StateColumn, VolumeKind, new_model)
+from .sampled import sampling_rows
 from .switch_table import switch_table
 from .tables import Tables
 
@@ -130,8 +131,8 @@ def _area(tables, area) -> tuple:
     if moving is not None:  # a surface on a vertex trajectory: the steps give the interval, then its pack
         tables.add_arrays(np.zeros(len(moving)), moving)
     scale = tables.add(area.scale) if area.scale is not None else -1
-    kind = AreaKind.MOVING_SURFACE if moving is not None else \
-        AreaKind.STEPS_OF_BODY if area.by_body else AreaKind.STEPS_OF_TIME
+    kind = AreaKind.MOVING_SURFACE if moving is not None else AreaKind.SAMPLED_OF_BODY if area.sampling is not None \
+        else AreaKind.STEPS_OF_BODY if area.by_body else AreaKind.STEPS_OF_TIME
     return steps, scale, kind, area.switch_scale
 
 
@@ -220,5 +221,5 @@ def lower(net):
         exchange_int, exchange_float, law_int, law_float, kernels, kink_int, kink_x, ambient,
         int(net.ledger_offset), T0.copy(), np.zeros((nc, StateColumn.FRACTIONS + ns)), np.zeros(ns), np.zeros(7),
         np.zeros(ne, dtype=np.int64), np.ones(ne, dtype=np.int64), np.full(ne, np.nan), np.zeros(ne, dtype=np.int64),
-        _body(geometry), *_seat(geometry), kinds, targets)
+        sampling_rows(geometry, ne), _body(geometry), *_seat(geometry), kinds, targets)
     return Engine(new_model(arrays), arrays, labels, T0, net, host)

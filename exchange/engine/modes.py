@@ -3,8 +3,9 @@ fires, and the state recorded per segment.
 
 The state lives in the model: ``M.equalised`` (1 while an exchange is held closed), ``M.open_state``
 (:class:`~exchange.engine.layout.OpenState`), ``M.hold_start`` (a pop vent's hold, NaN: not holding),
-``M.interval`` (the dynamic body's area interval per exchange), ``seat_state[HELD]`` and each volume spline's held
-piece (``CavityInt.PIECE``); a pop sets the vent's area at activation.
+``M.interval`` (the dynamic body's area interval per exchange; an FE rule's sampled flags also keep the interval
+holding s now and their queue of samples in ``M.sampling``, :mod:`exchange.engine.sampled`), ``seat_state[HELD]``
+and each volume spline's held piece (``CavityInt.PIECE``); a pop sets the vent's area at activation.
 """
 from __future__ import annotations
 
@@ -15,8 +16,10 @@ from numba import njit
 
 from .body import seat_event, seat_watched
 from .flows import base_area
-from .layout import (KNOT_SLACK, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SeatState,
-                     SegmentColumn, SwitchKind, TableColumn, VolumeKind, AreaKind, is_seat_switch, segment_blocks)
+from .sampled import apply_head, crossing_count, move_tracked, tracked_interval
+from .layout import (KNOT_SLACK, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, OpenState, SamplingColumn,
+                     SeatState, SegmentColumn, SwitchKind, TableColumn, VolumeKind, AreaKind, is_seat_switch,
+                     segment_blocks)
 
 __all__ = ["watched", "on_event", "record_segment", "rederive_intervals", "lock_pieces"]
 
@@ -33,9 +36,11 @@ def watched(M, q):
     if kind == K.CLOSE:
         return M.open_state[j] == OpenState.OPEN
     if kind == K.CROSSING_UP:
-        return M.interval[j] < M.table_index[M.exchange_int[j, ExchangeInt.AREA_TABLE], TableColumn.ROWS] - 1
+        return tracked_interval(M, j) < crossing_count(M, j)
     if kind == K.CROSSING_DOWN:
-        return M.interval[j] > 0
+        return tracked_interval(M, j) > 0
+    if kind == K.SAMPLE:
+        return M.sampling[j, SamplingColumn.COUNT] > 0
     if kind == K.KNOT_UP or kind == K.KNOT_DOWN:  # a knot above / below the held piece of cavity j's spline
         p = M.cavity_int[j, CavityInt.PIECE]
         rows = M.table_index[M.cavity_int[j, CavityInt.VOLUME_TABLE], TableColumn.ROWS]
@@ -55,7 +60,8 @@ def watched(M, q):
 def on_event(M, q, t, y, seg_end):
     """What switch q does when it fires at t: equalise holds the exchange closed, release opens it; a pop crossing
     starts the hold (or pops at once without a hold time), a drop re-arms, the hold's end pops and sets the vent's
-    area at activation; the close pressure shuts the exchange for good; a crossing moves the body's area interval;
+    area at activation; the close pressure shuts the exchange for good; a crossing moves the body's area interval
+    (an FE rule's current one, whose sample comes into use at its SAMPLE switch: :mod:`exchange.engine.sampled`);
     the seat switch may change the body's state ``y`` in place (:func:`exchange.engine.body.seat_event`). Kinks,
     knots and the turning point only end the segment."""
     kind, j = M.switch_kind[q], M.switch_target[q]
@@ -63,10 +69,10 @@ def on_event(M, q, t, y, seg_end):
         M.open_state[j] = OpenState.CLOSED
     elif kind == K.SEAT:
         seat_event(M, t, y, seg_end)
-    elif kind == K.CROSSING_UP:
-        M.interval[j] += 1
-    elif kind == K.CROSSING_DOWN:
-        M.interval[j] -= 1
+    elif kind == K.CROSSING_UP or kind == K.CROSSING_DOWN:
+        move_tracked(M, j, tracked_interval(M, j) + (1 if kind == K.CROSSING_UP else -1), t)
+    elif kind == K.SAMPLE:
+        apply_head(M, j)
     elif kind == K.EQUALISE or kind == K.RELEASE:
         M.equalised[j] = 1 if kind == K.EQUALISE else 0
     elif kind == K.POP and M.exchange_float[j, ExchangeFloat.HOLD_TIME] > 0.0:

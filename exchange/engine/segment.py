@@ -13,6 +13,7 @@ from .gas import states
 from .layout import ExchangeFloat, ExchangeInt, SwitchKind, is_kink, one_way_direction
 from .modes import lock_pieces, rederive_intervals, watched
 from .rhs import rhs
+from .sampled import rederive_sampled
 from .switches import exchange_switch, switches
 
 __all__ = ["begin_segment", "directions"]
@@ -27,6 +28,7 @@ def begin_segment(M, t, y, seg_end):
     ei, ef, eq = M.exchange_int, M.exchange_float, M.equalised
     if has_body(M):
         rederive_intervals(M, y)
+        rederive_sampled(M, t, y)
         lock_pieces(M, y)
     for j in range(eq.size):  # a DELTA LEAKAGE AREA opened by time: its area at the open time, once past it
         base = ef[j, ExchangeFloat.AREA_AT_ACTIVATION]

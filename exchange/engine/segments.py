@@ -17,7 +17,7 @@ def modes_of(engine, segs) -> list:
     a, ne = engine.arrays, len(engine.network.exchanges)
     opened, hold, interval, held, _ = (int(c) for c in segment_blocks(ne))
     pop_vents = (a.exchange_int[:, ExchangeInt.POP] == 1).tolist()
-    by_body = (a.exchange_int[:, ExchangeInt.AREA] == AreaKind.STEPS_OF_BODY).tolist()
+    by_body = np.isin(a.exchange_int[:, ExchangeInt.AREA], (AreaKind.STEPS_OF_BODY, AreaKind.SAMPLED_OF_BODY)).tolist()
     bits_c, t_c = int(SegmentColumn.EQUALISED), int(SegmentColumn.T_MIN)
     out = []
     for row in np.asarray(segs).tolist():

@@ -54,6 +54,8 @@ def switch_table(net, geometry) -> tuple:
             if area.by_body:
                 add(K.CROSSING_DOWN, j, net.exchanges[j].name)
                 add(K.CROSSING_UP, j, net.exchanges[j].name)
+            if area.sampling is not None:
+                add(K.SAMPLE, j, net.exchanges[j].name)
         pushed = geometry.body.pushed
         if pushed >= 0 and net.cavities[pushed].name in geometry.volumes:
             for kind in (K.KNOT_DOWN, K.KNOT_UP):

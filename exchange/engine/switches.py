@@ -20,7 +20,9 @@ from cavity.isentropic import critical_pressure_ratio
 from .body import seat_switch
 from .gas import states
 from .hosted import hosted_choke_ratio
-from .layout import (LAW_LOAD, AmbientColumn, SeatLaw, SeatState, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt, Fluid, KinkColumn,
+from .sampled import sample_switch, tracked_interval
+from .layout import (LAW_LOAD, AmbientColumn, SeatLaw, SeatState, BodyColumn, CavityInt, ExchangeFloat, ExchangeInt,
+                     Fluid, KinkColumn,
                      KinkVariable, StateColumn, SwitchKind, TableColumn, is_body_switch, is_seat_switch, side)
 
 __all__ = ["switches", "exchange_switch", "choke_ratio_of", "kink_value", "body_switch", "knot_switch"]
@@ -107,7 +109,7 @@ def body_switch(M, kind, j, y):
     if kind == K.TURN:
         return y[k + 1] / bd[BodyColumn.SPEED_SCALE]
     start = M.table_index[M.exchange_int[j, ExchangeInt.AREA_TABLE], TableColumn.START]  # x = [−inf, crossings...]
-    i = M.interval[j]
+    i = tracked_interval(M, j)
     c = M.table_x[start + 1 + i] if kind == K.CROSSING_UP else M.table_x[start + i]
     return (y[k] - c) / M.exchange_float[j, ExchangeFloat.SWITCH_SCALE]
 
@@ -125,6 +127,8 @@ def switches(M, qs, t, y, seg_end, vals):
         elif kind == K.POP_HOLD:
             h, start = M.exchange_float[j, ExchangeFloat.HOLD_TIME], M.hold_start[j]
             vals[n] = (t - (start + h)) / h if h > 0.0 and not math.isnan(start) else 1.0
+        elif kind == K.SAMPLE:
+            vals[n] = sample_switch(M, j, t)
         elif is_body_switch(kind):
             vals[n] = body_switch(M, kind, j, y)
         else:
