@@ -165,7 +165,8 @@ def rule_flags_along(fe, exact: Crossings, faces, face_sizes, main=None, fixed=N
             now = new
     cat = (lambda parts, dtype: np.concatenate(parts).astype(dtype) if parts else np.zeros(0, dtype))
     return SampledFlags(corner0, cat(th, float), cat(ids, np.int64), cat(sts, bool), exact.resolution,
-                        exact.evaluations, exact.unresolved, exact, corners, sizes.astype(float), fe.sdfblk, fe)
+                        exact.evaluations, exact.unresolved, exact.uncertain, nodes=exact, corners=corners,
+                        face_sizes=sizes.astype(float), scale=fe.sdfblk, rule=fe)
 
 
 def dynamic_fe_track(scene, j, exact: Crossings, surface, x_leak, weights, driver, options) -> SampledTrack:

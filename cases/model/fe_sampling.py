@@ -289,7 +289,8 @@ def _assembled(fe, records, node_records, corners, sizes, last, t_end, exact, ma
     nodes = Crossings(node0, cat(n_theta, float), cat(n_ids, np.int64), cat(n_states, bool), fe.step)
     evaluations = exact.evaluations + (main.queries if main is not None else 0)
     return SampledFlags(corner0, cat(theta, float), cat(ids, np.int64), cat(states, bool), fe.step, evaluations,
-                        exact.unresolved, exact.uncertain, nodes, corners, sizes.astype(float), fe.sdfblk, fe)
+                        exact.unresolved, exact.uncertain, nodes=nodes, corners=corners, face_sizes=sizes.astype(float),
+                        scale=fe.sdfblk, rule=fe)
 
 
 def rule_faces(surface, weights, n: int) -> tuple:
