@@ -106,10 +106,10 @@ def overshoot(k0, k1, y0, y1, d0, d1):
 
 
 def smoothed_jumps(exact, width: float):
-    """(target, smoothing error [m^3]): ``exact`` with each jump of ΔV spread linearly over the ``width`` [m]
-    after it (its staircase of jumps J replaced by Σ j·clip((s − b)/w, 0, 1), continuous; nothing moves before
-    the first contact), and the largest |J_w − J| (at the new knots or the jumps) plus the jumps too small to
-    matter (rounding of the running sum), which are dropped."""
+    """(target, smoothing error [m^3]): ``exact`` with each jump of ΔV at b spread linearly over [b − w/2, b + w/2]
+    (``width`` w [m], its start held at the first contact so that nothing moves before it): the staircase of
+    jumps J becomes Σ j·clip((s − start)/(end − start), 0, 1), continuous. The error is the largest |J_w − J| (at
+    the new knots or the jumps) plus the jumps too small to matter (rounding of the running sum), dropped."""
     br = exact.breaks
     vl, _ = exact.value(br, side="left")
     vr, _ = exact.value(br, side="right")
@@ -121,15 +121,13 @@ def smoothed_jumps(exact, width: float):
     k = np.flatnonzero(jump)
     if not k.size:
         return exact, dropped
+    moving = np.flatnonzero(np.any(exact.coef != 0.0, axis=1))
     b, j = br[k], jump[k]
-    new = np.unique(np.clip(np.r_[br, b + width], br[0], br[-1]))
+    start, end = np.maximum(b - 0.5 * width, br[moving[0]]), b + 0.5 * width
+    new = np.unique(np.clip(np.r_[br, start, end], br[0], br[-1]))
     mids = 0.5 * (new[:-1] + new[1:])
     stair = np.cumsum(jump)[np.searchsorted(br, mids, side="right") - 1]  # J on each new piece
-    # on each new piece J_w = a + c·s: the ramps ended count whole, those under way linearly
-    csum, cum_b = np.r_[0.0, np.cumsum(j)], np.r_[0.0, np.cumsum(j * b)]
-    lo_i, hi_i = np.searchsorted(b + width, mids), np.searchsorted(b, mids)
-    slope = (csum[hi_i] - csum[lo_i]) / width
-    const = csum[lo_i] - (cum_b[hi_i] - cum_b[lo_i]) / width
+    const, slope = _ramps(start, end, j, mids)
     coef = exact.coef[np.clip(exact.piece(mids), 0, len(exact.coef) - 1)].copy()
     coef[:, 0] += const + slope * exact.mid - stair
     coef[:, 1] += slope * exact.half
@@ -138,6 +136,20 @@ def smoothed_jumps(exact, width: float):
     pj = np.r_[np.arange(len(mids)), np.arange(len(mids))]
     error = float(np.max(np.abs(const[pj] + slope[pj] * ends - stair[pj])))
     return target, error + dropped
+
+
+def _ramps(start, end, j, s):
+    """(a, c) with Σ j·clip((s − start)/(end − start), 0, 1) = a + c·s at each s (no ramp end strictly inside a
+    piece holding s): the ramps ended count whole, those under way linearly."""
+    rate = j / (end - start)
+    by_start, by_end = np.argsort(start), np.argsort(end)
+    started = np.searchsorted(start[by_start], s)  # start < s
+    ended = np.searchsorted(end[by_end], s)  # end < s
+    cum = lambda v, order: np.r_[0.0, np.cumsum(v[order])]  # noqa: E731
+    whole = cum(j, by_end)[ended]
+    slope = cum(rate, by_start)[started] - cum(rate, by_end)[ended]
+    const = whole - (cum(rate * start, by_start)[started] - cum(rate * start, by_end)[ended])
+    return const, slope
 
 
 def excursion(slopes, br, k0, k1, d0, d1):
