@@ -3,7 +3,8 @@
 Requires: the ventsim package. Run: python benchmarks/wrap_scaling.py [--levels 1 2 3 4] [--dynamic] [--volume-only]
 The cushion's faces inside the vent box are subdivided k times (×4 faces each time: about 4k, 16k, 64k, 256k vent
 faces), the faces around them split to match (the mesh stays closed and conforming), and the case is run end to end
-in a fresh process per size: load, build (the wrapped volume and the vent's blockage track), solve. Each row gives
+in a fresh process per size (after a warm-up run): load, build (the wrapped volume and the vent's blockage track),
+solve. Each row gives
 the cushion and vent faces, the wrapped volume's own CPU time, its exact knots and fitted knots and error bound, the
 whole run's CPU time and peak resident memory; the last column is the local growth exponent of the end-to-end CPU
 time, log(cpu ratio)/log(vent faces ratio), against the previous row.
@@ -123,6 +124,9 @@ def main():
         return
     print(f"{'cushion faces':>13} {'vent faces':>10} {'volume cpu [s]':>14} {'fit knots':>9} {'bound [m^3]':>11} "
           f"{'end to end cpu [s]':>18} {'peak RSS [MiB]':>14} {'exponent':>8}")
+    with tempfile.TemporaryDirectory() as tmp:  # warm-up: numba's caches loaded or compiled, not in any row
+        subprocess.run([sys.executable, __file__, "--child", str(refined_case(Path(tmp), 0, args.dynamic))],
+                       capture_output=True, check=True)
     last = None
     for level in args.levels:
         with tempfile.TemporaryDirectory() as tmp:

@@ -20,10 +20,16 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["ConvexPlanes", "convex_planes", "node_pieces"]
+__all__ = ["ConvexPlanes", "convex_planes", "node_pieces", "WalkError"]
 
 #: A body with at most this many distinct planes lists every plane as every plane's neighbour.
 ALL_NEIGHBOURS = 64
+#: Cells one node's walk may cross before it is given up (:class:`WalkError`).
+MAX_STEPS = 100000
+
+
+class WalkError(RuntimeError):
+    """A node's walk did not reach the end of the range (the caller falls back to sampling)."""
 
 
 class ConvexPlanes:
@@ -124,8 +130,10 @@ def node_pieces(planes: ConvexPlanes, points, axis, lo: float, hi: float):
     start = np.clip(t[cand] - half, lo, hi)  # where the line enters the sphere (nothing touches before)
     first = planes.argmax(x[cand] - start[:, None] * a + planes.origin)
     beta = planes.normals @ a
-    out = _walk(x[cand], start, first, planes.normals, planes.offsets, beta, planes.ptr, planes.idx, hi)
-    node, s0, s1, plane = out
+    node, s0, s1, plane, stuck = _walk(x[cand], start, first, planes.normals, planes.offsets, beta, planes.ptr,
+                                       planes.idx, hi)
+    if stuck:
+        raise WalkError(f"{stuck} nodes crossed more than {MAX_STEPS} cells of the body: not walked to the end")
     return cand[node], s0, s1, plane
 
 
@@ -137,12 +145,13 @@ def _walk(x, start, first, normals, offsets, beta, ptr, idx, hi):
     s0 = np.empty(cap)
     s1 = np.empty(cap)
     plane = np.empty(cap, np.int64)
-    m = 0
+    m, stuck = 0, 0
     for i in range(len(x)):
         s, f = start[i], first[i]
         af = normals[f, 0] * x[i, 0] + normals[f, 1] * x[i, 1] + normals[f, 2] * x[i, 2] - offsets[f]
         inside = af - beta[f] * s < 0.0
-        for _ in range(100000):
+        done = False
+        for _ in range(MAX_STEPS):
             sn, g, bg = hi, -1, 0.0
             for q in range(ptr[f], ptr[f + 1]):
                 k = idx[q]
@@ -162,16 +171,19 @@ def _walk(x, start, first, normals, offsets, beta, ptr, idx, hi):
                 node[m], s0[m], s1[m], plane[m] = i, s, end, f
                 m += 1
             if end >= hi:
+                done = True
                 break
             s = end
             if sz <= sn:
                 if inside:  # g is convex: once out, the node stays out
+                    done = True
                     break
                 inside = True
             else:
                 f = g
                 af = normals[f, 0] * x[i, 0] + normals[f, 1] * x[i, 1] + normals[f, 2] * x[i, 2] - offsets[f]
-    return node[:m], s0[:m], s1[:m], plane[:m]
+        stuck += not done
+    return node[:m], s0[:m], s1[:m], plane[:m], stuck
 
 
 @njit(cache=True)

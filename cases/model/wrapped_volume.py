@@ -146,7 +146,7 @@ def _translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints
     """The exact-and-fitted WrappedVolume of one convex body in pure translation, else None."""
     from cases.model.wrap_exact import exact_wrap
     from cases.model.wrap_fit import fit_wrap, in_time
-    from cases.model.wrap_pieces import convex_planes
+    from cases.model.wrap_pieces import WalkError, convex_planes
 
     if len(wrapper.bodies) != 1:
         return None
@@ -169,7 +169,10 @@ def _translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints
         planes = convex_planes(body.mesh.vertices, body.mesh.faces)
         if planes is None:
             return None
-        exact = exact_wrap(planes, x0, faces, mesh.vertex_faces, body.axis, s_lo, s_hi)
+        try:
+            exact = exact_wrap(planes, x0, faces, mesh.vertex_faces, body.axis, s_lo, s_hi)
+        except WalkError:
+            return None
         v0 = mesh_volume(x0, faces)
         width = JUMP_WIDTH * float(body.mesh.edges_unique_length.mean())
         found = (fit_wrap(exact, FIT_TOLERANCE * abs(v0), RING * _peak_slope(exact), width), v0)
