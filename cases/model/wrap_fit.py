@@ -190,7 +190,8 @@ def hermite_fit(exact, tol: float, ring: float, max_knots: int = 20000) -> Hermi
         i = np.flatnonzero(todo)
         k0, k1, y0, y1, d0, d1 = knots[i], knots[i + 1], y[i], y[i + 1], dr[i], dl[i + 1]
         errs[i] = _errors(exact, k0, k1, y0, y1, d0, d1)
-        ringing = overshoot(k0, k1, y0, y1, d0, d1) > ring + excursion(slopes, br, k0, k1, d0, d1)
+        room = excursion(slopes, br, k0, k1, d0, d1)  # −inf: no exact knot inside, the piece is exact
+        ringing = (room >= 0.0) & (overshoot(k0, k1, y0, y1, d0, d1) > ring + np.maximum(room, 0.0))
         bad = i[(errs[i] > tol) | ringing]
         near = _split_points(br, knots[bad], knots[bad + 1], 1e-9 * (br[-1] - br[0]))
         ok = np.isfinite(near)

@@ -194,7 +194,7 @@ def _peak_slope(exact) -> float:
 #: Fit of the exact volume: its tolerance relative to the cavity's volume, the slope overshoot allowed on a
 #: piece relative to the peak |dV/ds|, and the width over which a jump of V is spread (a node switching to the
 #: next facet of the body), relative to the body's mean edge length.
-FIT_TOLERANCE, RING, JUMP_WIDTH = 1e-8, 1e-6, 1.0
+FIT_TOLERANCE, RING, JUMP_WIDTH = 1e-7, 1e-6, 1.0
 #: Fits (and the cavity's V0) keyed by the digest of the meshes, the axis and the range of s: a sweep's variants
 #: that leave the geometry alone reuse them.
 _FITS: dict = {}
