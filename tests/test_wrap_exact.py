@@ -67,6 +67,17 @@ def test_fit_holds_its_bound_and_is_flat_before_contact(scene):
     assert np.all(p(before, 1) == 0.0)
 
 
+def test_fit_against_the_per_placement_definition_within_its_bound(scene):
+    """The fitted volume (what the run uses) against the old definition evaluated densely: within the bound."""
+    body, cavity, exact = scene
+    v0 = mesh_volume(cavity.vertices, cavity.faces)
+    peak = float(np.max(np.abs(exact.value(exact.breaks)[1])))
+    fit = fit_wrap(exact, 1e-9 * v0, 1e-6 * peak, 1e-3 * 0.06)
+    s = np.linspace(0.0, 0.06, 241)
+    want = np.array([brute_force(body, cavity, x) for x in s]) - v0
+    assert np.max(np.abs(fit.ppoly()(s) - want)) <= fit.bound + 1e-12 * v0
+
+
 def test_slope_does_not_ring_near_first_contact(scene):
     """Each piece's slope stays between its end slopes (to 1e-6 of the peak) where the geometry's is monotone."""
     _, cavity, exact = scene
