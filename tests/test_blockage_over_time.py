@@ -155,7 +155,8 @@ def test_a_rebounding_headform_releases_the_vent_and_converges_monotonically():
         final = blockage.evaluate(surface, [(blocker, body.transform(s))], 0.002, effective_area=1.4e-3)
         assert r.column("vent.area")[-1] == final.leak_area
     errors = [abs(finals[k] - finals[1e-12]) for k in (1e-6, 1e-8, 1e-10)]
-    assert errors[0] > errors[1] > errors[2]
+    floor = 1e-13 * finals[1e-12]  # round-off: with the exact wrapped volume rtol 1e-6 already lands here
+    assert all(a > b or a <= floor for a, b in zip(errors, errors[1:])), errors
     assert errors[2] <= 1e-7 * finals[1e-12]
 
 

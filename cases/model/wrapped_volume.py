@@ -1,9 +1,12 @@
 """Cavity volume wrapped around moving bodies, along a parameter θ.
 
 θ is time for prescribed motion and the driving body's displacement for a dynamic body. The cavity volume V(θ)
-of a mesh whose nodes a convex body would penetrate are placed on the body's surface (the closest point, exact) is
-sampled on a grid and interpolated by a C² cubic spline, with dV/dθ from the spline. Leakage areas along θ are
-:mod:`cases.model.area_track` (from the certified crossings of :mod:`cases.model.crossings`).
+of a mesh whose nodes a convex body would penetrate are placed on the body's surface (the closest point, exact).
+For one convex body in translation V is computed exactly as a piecewise cubic of the displacement
+(:mod:`cases.model.wrap_exact`) and represented by an adaptive piecewise cubic with a proven error bound
+(:mod:`cases.model.wrap_fit`); otherwise it is sampled on a grid and interpolated by a C² cubic spline, with
+dV/dθ from the spline. Leakage areas along θ are :mod:`cases.model.area_track` (from the certified crossings of
+:mod:`cases.model.crossings`).
 """
 from __future__ import annotations
 
@@ -80,6 +83,7 @@ class WrappedVolume:
     lo: float
     hi: float
     breakpoints: tuple = ()
+    bound: float = float("nan")  # [m^3] largest distance to the exact wrapped volume (nan: sampled, unknown)
 
     def at(self, theta: float) -> float:
         return float(self.spline(min(max(theta, self.lo), self.hi)))
@@ -97,8 +101,13 @@ class WrappedVolume:
 
 def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta_rate, breakpoints=(),
                    knots_in_time: bool = False):
-    """Sample the wrapped volume on [lo, hi] and fit the spline; with ``knots_in_time`` (θ is the time: a
-    prescribed motion) the spline's knots join the breakpoints.
+    """The wrapped volume on [lo, hi]; with ``knots_in_time`` (θ is the time: a prescribed motion) the spline's
+    knots join the breakpoints.
+
+    One convex body in translation (a dynamic body, or a prescribed displacement without rotation): the exact
+    piecewise cubic V(s) in O(N log N) for N nodes reached (:mod:`cases.model.wrap_exact`) and its adaptive fit
+    with a proven bound (:mod:`cases.model.wrap_fit`), composed with s(t) for a prescribed motion (a cubic of a
+    piecewise-linear s(t) is a cubic between knots). Otherwise V is sampled on a grid and fitted by a C² spline:
 
     The spline is C² only: its third derivative jumps at every knot, which a high-order step straddling it would
     integrate at low order, leaving an error that no tolerance removes (about 3e-8 of the pressure of
@@ -107,6 +116,10 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
     Only faces with a moved node change their divergence-theorem term, so each sample costs the projection of
     the nodes near the bodies plus the volume change of their faces.
     """
+    fast = (_translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints, knots_in_time)
+            if EXACT_TRANSLATION else None)
+    if fast is not None:
+        return fast
     grid = np.linspace(lo, hi, GRID_POINTS)
     if knots_in_time:
         breakpoints = tuple(sorted(set(map(float, breakpoints)) | set(map(float, grid[1:-1]))))
@@ -135,13 +148,73 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
     return WrappedVolume(_spline(grid, vols), theta_of, theta_rate, lo, hi, tuple(breakpoints))
 
 
+def _translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints, knots_in_time):
+    """The exact-and-fitted WrappedVolume of one convex body in pure translation, else None."""
+    from cases.model.wrap_exact import exact_wrap
+    from cases.model.wrap_fit import fit_wrap, in_time
+    from cases.model.wrap_pieces import WalkError, convex_planes
+
+    if len(wrapper.bodies) != 1:
+        return None
+    body = wrapper.bodies[0]
+    motion = body.motion
+    if body.deforming or getattr(motion, "rotation_table", None) is not None:
+        return None
+    x0, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
+    if knots_in_time:
+        times = np.unique(np.r_[lo, hi, [t for t in breakpoints if lo < t < hi]])
+        s = np.array([motion.displacement(t) for t in times])
+        s_lo, s_hi = float(s.min()), float(s.max())
+    else:
+        s_lo, s_hi = lo, hi
+    span = max(s_hi - s_lo, 1e-9 * max(float(np.linalg.norm(body.mesh.extents)), 1e-3))
+    s_hi = s_lo + span
+    key = _rigid_key(body, np.array([s_lo, s_hi]), np.asarray(body.axis, dtype=float), x0, faces)
+    found = _FITS.get(key)
+    if found is None:
+        planes = convex_planes(body.mesh.vertices, body.mesh.faces)
+        if planes is None:
+            return None
+        try:
+            exact = exact_wrap(planes, x0, faces, mesh.vertex_faces, body.axis, s_lo, s_hi)
+        except WalkError:
+            return None
+        v0 = mesh_volume(x0, faces)
+        width = JUMP_WIDTH * float(body.mesh.edges_unique_length.mean())
+        found = (fit_wrap(exact, FIT_TOLERANCE * abs(v0), RING * _peak_slope(exact), width), v0)
+        _FITS[key] = found
+        while len(_FITS) > 8:
+            del _FITS[next(iter(_FITS))]
+    fit, v0 = found
+    if knots_in_time:
+        spline = in_time(fit, breakpoints, motion.displacement, lo, hi, v0)
+        brk = tuple(sorted(set(map(float, breakpoints)) | set(map(float, spline.x[1:-1]))))
+        return WrappedVolume(spline, theta_of, theta_rate, lo, hi, brk, fit.bound)
+    return WrappedVolume(fit.ppoly(v0), theta_of, theta_rate, lo, hi, tuple(breakpoints), fit.bound)
+
+
+def _peak_slope(exact) -> float:
+    return float(np.max(np.abs(exact.value(exact.breaks)[1]), initial=0.0))
+
+
+#: Fit of the exact volume: its tolerance relative to the cavity's volume, the slope overshoot allowed on a
+#: piece relative to the peak |dV/ds|, and the width over which a jump of V is spread (a node switching to the
+#: next facet of the body), relative to the body's mean edge length.
+FIT_TOLERANCE, RING, JUMP_WIDTH = 1e-7, 1e-6, 1.0
+#: Fits (and the cavity's V0) keyed by the digest of the meshes, the axis and the range of s: a sweep's variants
+#: that leave the geometry alone reuse them.
+_FITS: dict = {}
+#: The exact path for one convex body in translation (False: the sampled spline, for comparisons).
+EXACT_TRANSLATION = True
+
 #: Sampled volumes of one rigid body's placements, keyed by the digest of everything they depend on (the mesh,
 #: the body's mesh, its transforms on the grid): the variants of a sweep that leave the geometry alone reuse them.
 _RIGID_VOLUMES: dict = {}
 
 
 def _rigid_key(body, T, grid, x0, faces) -> str:
-    """Content digest of one rigid body's wrapping on ``grid``, its poses ``T`` (grid, 4, 4)."""
+    """Content digest of one rigid body's wrapping on ``grid``, its poses ``T`` (grid, 4, 4) (or of its range of
+    s and its axis)."""
     digest = hashlib.sha1()
     for a in (x0, faces, grid, T, body.mesh.vertices, body.mesh.faces):
         digest.update(np.ascontiguousarray(a).tobytes())
