@@ -22,7 +22,7 @@ from cavity.tables import Table
 from cases.scene.errors import SceneError
 from cases.scene.unit_systems import SYSTEMS
 
-__all__ = ["check_plausible", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT", "MIN_INFLATED"]
+__all__ = ["check_plausible", "gas_temperatures", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT", "MIN_INFLATED"]
 
 #: Lowest absolute pressure [Pa], gas temperature [K], largest cavity volume [m^3] and mesh or body extent [m]
 #: a scene may give without an explicit override; least share of a cavity's gas its inflators must add [-].
@@ -85,17 +85,25 @@ def _pressures(c: _Checker) -> None:
                           "[Pa]")
 
 
-def _temperatures(c: _Checker) -> None:
-    items = [("ambient.temperature", c.scene.ambient.temperature)]
-    for i, cav in enumerate(c.scene.cavity):
-        if cav.fluid == "gas":
-            items.append((f"cavity[{i}].temperature", cav.temperature))
+def gas_temperatures(scene) -> list:
+    """(key, temperature [K]) of every gas temperature a scene gives: ambient, gas cavities, their inflators (a
+    table's lowest value) and inflator tanks."""
+    items = [("ambient.temperature", scene.ambient.temperature)]
+    for i, cav in enumerate(scene.cavity):
+        if cav.fluid != "gas":
+            continue
+        items.append((f"cavity[{i}].temperature", cav.temperature))
         for j, inf in enumerate(cav.inflator):
             T = inf.temperature
             if T is not None:
                 items.append((f"cavity[{i}].inflator[{j}].temperature", min(T.y) if isinstance(T, Table) else T))
             if inf.tank_temperature:
                 items.append((f"cavity[{i}].inflator[{j}].tank_temperature", inf.tank_temperature))
+    return items
+
+
+def _temperatures(c: _Checker) -> None:
+    items = gas_temperatures(c.scene)
     for where, T in items:
         if T > MAX_TEMPERATURE:
             c.fail(where, f"{T:.6g} K is above {MAX_TEMPERATURE:g} K, hotter than any gas here: a typo?")

@@ -24,7 +24,7 @@ from cases.scene.checks import check_cross_references
 from cases.scene.contact import check_contacts
 from cases.scene.blockage_rule import check_blockage
 from cases.scene.meshes import check_meshes
-from cases.scene.plausible import check_plausible
+from cases.scene.plausible import check_plausible, gas_temperatures
 from cases.scene.values import composition, cp_coefficients, names_list, table_value, vector
 from cases.scene.tables_io import read_table
 
@@ -200,14 +200,7 @@ def _sanity(scene, path) -> None:
 def _temperatures(scene, path) -> None:
     """Gas temperatures (ambient, gas cavities, inflator numbers and tables) of at least
     :data:`MIN_GAS_TEMPERATURE`: below it the ideal-gas energy solve has nothing to stand on."""
-    low = [("ambient.temperature", scene.ambient.temperature)]
-    for i, c in enumerate(scene.cavity):
-        if c.fluid == "gas":
-            low.append((f"cavity[{i}].temperature", c.temperature))
-            for j, inf in enumerate(c.inflator):
-                T = inf.temperature
-                if T is not None:
-                    low.append((f"cavity[{i}].inflator[{j}].temperature", min(T.y) if isinstance(T, Table) else T))
+    low = gas_temperatures(scene)
     for where, T in low:
         if T < MIN_GAS_TEMPERATURE:
             raise SceneError(path, where, f"{T!r} K is below {MIN_GAS_TEMPERATURE:g} K, where no gas here is "
