@@ -154,6 +154,8 @@ def reset_sampling(arrays) -> None:
     """The run's start: each sampled rule's current interval is the one holding s = 0 (a segment start re-derives
     it), its cycle 0 queued when it has a lag (in use from n·Δt on; the network starts it flagless) and nothing
     queued otherwise (the network starts it on that interval)."""
+    if not arrays.sampling[:, S.STEP].any():  # no sampled rule in this model
+        return
     tx, ti = arrays.table_x, arrays.table_index
     for j in np.flatnonzero(arrays.exchange_int[:, ExchangeInt.AREA] == AreaKind.SAMPLED_OF_BODY):
         k = arrays.exchange_int[j, ExchangeInt.AREA_TABLE]
