@@ -38,12 +38,14 @@ from exchange.seal.percolation import element_coefficients, leak_path_nodes
 from exchange.seal.viscosity import mean_free_path
 
 __all__ = ["FilmSolution", "solve_film", "film_conductance", "film_mass_flow", "element_energies",
-           "SLIP_RTOL", "SLIP_MAX_ITERATIONS"]
+           "SLIP_RTOL", "SLIP_MAX_ITERATIONS", "GUESS_TOL"]
 
 #: Relative change of the mass flow below which the slip iteration stops [-].
 SLIP_RTOL = 1e-13
 #: Iterations before the slip iteration is declared failed [-].
 SLIP_MAX_ITERATIONS = 100
+#: Componentwise backward error at which a guessed field is kept instead of a direct solve [-].
+GUESS_TOL = 1e-14
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,11 +125,23 @@ def _solve(matrix, rhs):
     return lu.solve(rhs)
 
 
-def solve_film(film, k_tri, k_quad, u_high, u_low):
+def _accepted(matrix, rhs, x):
+    """``x`` if it solves matrix·x = rhs to a componentwise backward error of GUESS_TOL in every row
+    (Oettli–Prager: |A x − b| <= tol·(|A| |x| + |b|), x then exactly solves a system whose entries differ by at
+    most that relative amount, as a direct solve's do by round-off), else None."""
+    if x is None or not np.isfinite(x).all():
+        return None
+    bound = abs(matrix) @ np.abs(x) + np.abs(rhs)
+    return x if np.all(np.abs(matrix @ x - rhs) <= GUESS_TOL * bound) else None
+
+
+def solve_film(film, k_tri, k_quad, u_high, u_low, guess=None):
     """Solve ∇·(k∇u) = 0 with u = ``u_high`` on the pressurised edge and ``u_low`` on the outer edge.
 
-    ``k_tri``, ``k_quad`` element coefficients [m³] (:func:`exchange.seal.percolation.element_coefficients`).
-    Returns a :class:`FilmSolution`.
+    ``k_tri``, ``k_quad`` element coefficients [m³] (:func:`exchange.seal.percolation.element_coefficients`);
+    ``guess`` (n,) a field u tried first (e.g. the solution at a neighbouring load): kept where it solves this
+    system to round-off (:func:`_accepted`; a film whose coefficients all scale by one factor has the same field),
+    else the system is factorised. Returns a :class:`FilmSolution`.
     """
     through, high_side, low_side = leak_path_nodes(film, k_tri, k_quad)
     u = np.full(film.n_nodes, np.nan)
@@ -146,7 +160,9 @@ def solve_film(film, k_tri, k_quad, u_high, u_low):
         order = order[np.argsort(_elimination_rank(film)[order], kind="stable")]
         rows = matrix[order]
         rhs = -(rows[:, fixed_high | fixed_low] @ u[fixed_high | fixed_low])
-        u[order] = _solve(rows[:, order].tocsc(), rhs)
+        a_ff = rows[:, order].tocsc()
+        x = None if guess is None else _accepted(a_ff, rhs, np.asarray(guess, float)[order])
+        u[order] = _solve(a_ff, rhs) if x is None else x
     field = np.where(through, u, 0.0)
     reaction = matrix @ field
     energy = float(np.sum(field * reaction))  # not a BLAS dot: its idle threads spin and cost CPU
@@ -168,9 +184,10 @@ def element_energies(film, solution):
     return tuple(out)
 
 
-def film_conductance(film, gaps, power=3):
+def film_conductance(film, gaps, power=3, guess=None):
     """The film's conductance K [m³] for nodal gaps ``gaps`` (n,) [m], and its :class:`FilmSolution` (u from 1 on
-    the pressurised edge to 0 on the outer edge); ``power`` 2 gives the slip conductance K_2 [m²] (k = h²).
+    the pressurised edge to 0 on the outer edge); ``power`` 2 gives the slip conductance K_2 [m²] (k = h²);
+    ``guess`` a field tried first (:func:`solve_film`).
 
     >>> from exchange.seal.film import seal_film
     >>> from exchange.seal.meshes import annulus_mesh
@@ -179,7 +196,7 @@ def film_conductance(film, gaps, power=3):
     >>> float(round(K / (2 * np.pi * 1e-15 / np.log(2.0)), 12))  # 2π h³ / ln(ro/ri)
     1.0
     """
-    solution = solve_film(film, *element_coefficients(film, gaps, power), 1.0, 0.0)
+    solution = solve_film(film, *element_coefficients(film, gaps, power), 1.0, 0.0, guess)
     return solution.flux, solution
 
 
