@@ -12,7 +12,13 @@ the gap picture.
 p_onset and p_lift, leak rate, minimum and mean channel height, contact-area fraction) and its gap picture at the
 largest leak (``seal_flange_gap.png``), and prints the onset pressure against the formula.
 
-Run: python benchmarks/seal_scene.py [--nodes 480 5120 20480] [--seal-rtol 1e-4] [--no-merge] [--figures DIR]
+``--compare-solver`` also builds each curve factorising every solve afresh (SuperLU's ordering, default
+supernodes, no reused field) and prints how far the two curves differ.
+
+``--no-reuse`` factorises every Reynolds solve (the cost of a seal whose gap field changes shape with the load).
+
+Run: python benchmarks/seal_scene.py [--nodes 480 5120 20480] [--seal-rtol 1e-4] [--no-merge] [--no-reuse]
+[--compare-solver] [--figures DIR]
 """
 from __future__ import annotations
 
@@ -106,10 +112,19 @@ def measure(nodes: int, folder: Path, rtol: float) -> dict:
         spent.append(time.process_time() - begin)
         return out
 
+    import exchange.seal.reynolds as reynolds
+    factorised = []
+
+    def counted(*args):  # the direct solves (the others reused a neighbouring field)
+        factorised.append(1)
+        return solve(*args)
+
     integrate, runner.integrate = runner.integrate, timed
+    solve, reynolds._solve = reynolds._solve, counted
     start = time.process_time()
     model = build_model(scene)
     built = time.process_time()
+    reynolds._solve = solve
     results = run(model)
     ran = time.process_time()
     write_seal_pictures(results, folder)
@@ -119,8 +134,40 @@ def measure(nodes: int, folder: Path, rtol: float) -> dict:
     events = [label for _, label in results.trajectory.events if label.startswith("seal:")]
     return {"nodes": nodes, "build": built - start, "run": ran - built, "picture": drawn - ran,
             "integration": spent[0],
-            "solves": curve.solves, "knots": len(curve.knots), "steps": results.summary["solver"].get("steps", 0),
+            "solves": curve.solves, "factorised": len(factorised), "knots": len(curve.knots), "steps": results.summary["solver"].get("steps", 0),
             "events": ",".join(events)}
+
+
+def compare_solver(nodes: int, folder: Path, rtol: float) -> None:
+    """Print the largest relative difference of the curve (values, slopes) built as the scene does (the film's
+    elimination order, neighbouring fields reused) against one factorised afresh at every solve with SuperLU's own
+    ordering and default supernodes."""
+    from scipy.sparse.linalg import splu
+
+    import exchange.seal.reynolds as reynolds
+    from exchange.seal.setup import piecewise_curve
+
+    scene = load_scene(ROOT / "cases" / "seal_flange.toml")
+    seal = replace(scene.exchange[0], leakage_surface=str(ring_file(folder, nodes)), seal_rtol=rtol)
+    model = build_model(replace(scene, exchange=(seal,) + scene.exchange[1:]))
+    seal_model = seal_models(model)[0]
+    film, path, law = seal_model.film, seal_model.path, seal_model.law
+    rank, solve, accepted = reynolds._elimination_rank, reynolds._solve, reynolds._accepted
+    reynolds._elimination_rank = lambda f: np.arange(f.n_nodes)
+    reynolds._accepted = lambda *args: None
+    reynolds._solve = lambda a, b: splu(a, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                                        options={"SymmetricMode": True}).solve(b)
+    try:
+        other = piecewise_curve(film, path, model.network.contact.thresholds(), law.setup.s_min, law.setup.s_max,
+                                rtol)
+    finally:
+        reynolds._elimination_rank, reynolds._solve, reynolds._accepted = rank, solve, accepted
+    c = law.curve
+    same = np.array_equal(c.knots, other.knots)
+    dv = np.max(np.abs(c.values - other.values) / np.maximum(np.abs(other.values), 1e-300)) if same else np.nan
+    ds = np.max(np.abs(c.slopes - other.slopes) / np.maximum(np.abs(other.slopes), 1e-300)) if same else np.nan
+    print(f"{nodes} nodes, seal_rtol {rtol:g}: same knots {same}; values differ by {dv:.1e}, slopes by {ds:.1e} "
+          "(relative, largest)")
 
 
 def main() -> int:
@@ -129,19 +176,29 @@ def main() -> int:
     ap.add_argument("--seal-rtol", type=float, default=1e-4, help="the seal curve's tolerance (the scene's: 1e-4)")
     ap.add_argument("--figures", type=Path, default=None, help="draw the library scene's figures into this folder")
     ap.add_argument("--no-merge", action="store_true", help="sum the seat force over every node (no merged rows)")
+    ap.add_argument("--no-reuse", action="store_true",
+                    help="factorise every Reynolds solve (no field reused: the cost of a film whose field changes)")
+    ap.add_argument("--compare-solver", action="store_true",
+                    help="also compare the curve with one factorised afresh at every solve")
     args = ap.parse_args()
+    if args.no_reuse:
+        import exchange.seal.reynolds as reynolds
+        reynolds._accepted = lambda *unused: None
     if args.no_merge:
         import cases.model.seat_contact as seat_contact
         seat_contact.MERGE_ABOVE = 10 ** 12
     run(build_model(load_scene(ROOT / "cases" / "seal_flange.toml")))  # compile and cache, not counted
     print("| seal nodes | build [s CPU] | run 1 s [s CPU] | of which integration [s CPU] | build + run | picture "
-          "| Reynolds solves | knots | steps | seal events |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "| Reynolds solves | factorised | knots | steps | seal events |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for n in args.nodes:
             r = measure(n, Path(tmp), args.seal_rtol)
             print(f"| {r['nodes']} | {r['build']:.2f} | {r['run']:.2f} | {r['integration']:.2f} | "
-                  f"{r['build'] + r['run']:.2f} | {r['picture']:.2f} | {r['solves']} | {r['knots']} | {r['steps']} | {r['events']} |", flush=True)
+                  f"{r['build'] + r['run']:.2f} | {r['picture']:.2f} | {r['solves']} | {r['factorised']} | {r['knots']} | {r['steps']} | {r['events']} |", flush=True)
+        if args.compare_solver:
+            for n in args.nodes:
+                compare_solver(n, Path(tmp), args.seal_rtol)
     if args.figures is not None:
         figures(args.figures)
     return 0

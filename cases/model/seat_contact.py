@@ -133,8 +133,25 @@ class SeatContact:
 
     def nodal(self, s: float, v: float, reaction: float = 0.0) -> tuple:
         """(CPRESS per node [Pa], status code per node) at (s, v); ``reaction`` is a held hard contact's F_c [N]
-        (:func:`exchange.contact.laws.seat_nodal`)."""
-        return seat_nodal(float(s), float(v), float(reaction), self.table, self.law_vector)
+        (:func:`exchange.contact.laws.seat_nodal`, on the distinct rows of a large seat: :meth:`nodal_rows`)."""
+        rows, node_row = self.nodal_rows()
+        p, status = seat_nodal(float(s), float(v), float(reaction), rows, self.law_vector)
+        return (p, status) if node_row is None else (p[node_row], status[node_row])
+
+    def nodal_rows(self) -> tuple:
+        """(one node of each distinct (clearance, side, reach), the row of each node): as for the engine's merged
+        rows, a node's status depends on these only and its CPRESS too (the critical damping coefficient per unit
+        area does not depend on the area: equal to round-off), so a seat of more than MERGE_ABOVE nodes is
+        evaluated once per row. (table, None) for small seats and hard contact (its reaction is shared over the
+        closed area, a sum over nodes)."""
+        if getattr(self, "_nodal_rows", None) is None:
+            if self.hard or len(self.table) <= MERGE_ABOVE:
+                self._nodal_rows = (self.table, None)
+            else:
+                _, first, node_row = np.unique(self.table[:, [0, 1, 3]], axis=0, return_index=True,
+                                               return_inverse=True)
+                self._nodal_rows = (np.ascontiguousarray(self.table[first]), node_row.ravel())
+        return self._nodal_rows
 
     def thresholds(self) -> np.ndarray:
         """Values of s where the force has a kink or a jump: each distinct g0 reaching touch, c0 (softened),

@@ -13,7 +13,6 @@ import math
 import numpy as np
 
 from cases.model.build_seal import seal_models
-from exchange.seal.channel import contact_fraction
 
 __all__ = ["seal_columns", "seal_summary", "write_seal_pictures"]
 
@@ -24,17 +23,20 @@ def _displacements(model, columns, history):
 
 
 def seal_columns(model, columns, history) -> list:
-    """[(column, values)] of every seal at the rows of ``history`` (which holds the flange's displacement)."""
+    """[(column, values)] of every seal at the rows of ``history`` (which holds the flange's displacement).
+
+    The channel is evaluated once per distinct row of the seal's node table (a flat ring: one per radius) and the
+    area sums are taken over those rows with their summed areas."""
     out = []
     for seal in seal_models(model):
         s = _displacements(model, columns, history)
-        mins, means, fractions, conductance = (np.empty(len(s)) for _ in range(4))
-        areas = seal.film.areas
-        for r, q in enumerate(s):
-            h, touching = seal.path.state(q)
-            mins[r], means[r] = h.min(), float(h @ areas / areas.sum())
-            fractions[r] = contact_fraction(touching, areas)
-            conductance[r] = seal.law.conductance(q)[0]
+        path, node_row = seal.path.distinct()
+        areas = np.bincount(node_row, weights=seal.film.areas, minlength=len(path.nodes))
+        total = float(np.sum(areas))  # the same sum as a fraction's numerator: all in contact gives 1 exactly
+        h, touching = (np.array(v) for v in zip(*(path.state(q) for q in s))) if len(s) else (np.zeros((0, 1)),) * 2
+        mins, means = h.min(axis=1, initial=np.inf), np.sum(h * areas, axis=1) / total
+        fractions = np.sum(np.where(touching, areas, 0.0), axis=1) / total
+        conductance = np.array([seal.law.conductance(q)[0] for q in s])
         out += [(f"{seal.name}.min_gap [m]", mins), (f"{seal.name}.mean_gap [m]", means),
                 (f"{seal.name}.contact_fraction [-]", fractions), (f"{seal.name}.conductance [m^3]", conductance)]
     return out

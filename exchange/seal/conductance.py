@@ -119,12 +119,12 @@ class ConductanceCurve:
                 "closure": float(self.closure), "direction": float(self.direction)}
 
 
-def _sample(film, path, q, step, power):
-    """(K, dK/dq) at load q."""
+def _sample(film, path, q, step, power, guess=None):
+    """(K, dK/dq) at load q, and the solved field (None if sealed); ``guess`` a field tried first."""
     h = path.heights(q)
-    k_cond, solution = film_conductance(film, h, power)
+    k_cond, solution = film_conductance(film, h, power, guess)
     if solution.sealed:
-        return 0.0, 0.0
+        return (0.0, 0.0), None
     dh = (path.heights(q + step) - path.heights(q - step)) / (2.0 * step)
     slope = 0.0
     for elements, k, energy in zip((film.triangles, film.quads), (solution.k_tri, solution.k_quad),
@@ -136,7 +136,7 @@ def _sample(film, path, q, step, power):
             harmonic = n / np.sum(1.0 / he, axis=1)
             dk = k[:, None] * (2.0 / (n * he) + (power - 2) * harmonic[:, None] / (n * he * he))  # d(G²H)/dh_i
         slope += float(np.sum(energy * np.sum(np.where(k[:, None] > 0.0, dk, 0.0) * dh[elements], axis=1)))
-    return k_cond, slope
+    return (k_cond, slope), solution.u
 
 
 def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol=None, max_solves=MAX_SOLVES,
@@ -156,14 +156,16 @@ def conductance_curve(film, path, lower, upper, rtol=CURVE_RTOL, atol=None, qtol
     if hi <= lo:  # sealed over the whole range
         return ConductanceCurve(np.array([lower, upper]), np.zeros(2), np.zeros(2), q_star, path.direction, 0, 0.0)
     step = 1e-7 * (hi - lo)
-    samples, solves = {}, 0
+    samples, solves, field = {}, 0, None
 
-    def sample(q):
-        nonlocal solves
+    def sample(q):  # the last field solved is tried first: kept only where it solves the new system to round-off
+        nonlocal solves, field
         if q not in samples:
-            at_closure = q == q_star
-            samples[q] = (0.0, 0.0) if at_closure else _sample(film, path, q, min(step, abs(q - q_star) / 2), power)
-            solves += 0 if at_closure else 1
+            if q == q_star:
+                samples[q] = (0.0, 0.0)
+            else:
+                samples[q], u = _sample(film, path, q, min(step, abs(q - q_star) / 2), power, field)
+                field, solves = (field if u is None else u), solves + 1
         return samples[q]
 
     grid = list(np.linspace(lo, hi, 5))

@@ -90,6 +90,19 @@ class DisplacementPath:
         h = channel_height(clearance, pressure, self.gap_law, self.p_max)
         return np.where(self.direction * (s - self._closing) >= 0.0, 0.0, h), closed
 
+    def distinct(self):
+        """(path over one node of each distinct (clearance, side, reach), the row of each node): a node's channel,
+        contact state and closing displacement depend on these only (not on its area: no damping, no shared
+        reaction), so the reduced path gives the same values, bit for bit. A flat ring: one row."""
+        keys = self.nodes[:, [SeatNode.GAP, SeatNode.SIDE, SeatNode.REACH]]
+        _, first, node_row = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+        out = object.__new__(DisplacementPath)
+        out.__dict__.update(self.__dict__)
+        out.nodes = np.ascontiguousarray(self.nodes[first])
+        out.p_max = None if self.p_max is None else self.p_max[first]
+        out._closing = self._closing[first]
+        return out, node_row.ravel()
+
     def closing(self):
         """(n,) displacement [m] at which each node's channel closes (inf never; the path's direction applies)."""
         g_c = -math.inf if self.p_max is not None else closing_clearance(self.law, self.gap_law)

@@ -21,27 +21,31 @@ by fixed-point iteration on the element pressures. For a uniform gap it is exact
 
 **Discretisation.** Linear triangles and bilinear quads in a chart of the surface (:mod:`exchange.seal.chart`),
 one coefficient per element (:func:`exchange.seal.percolation.element_coefficients`), a direct sparse solve
-(scipy.sparse.linalg.splu) on the nodes of the conducting paths that join the edges. The inflow and the
+(scipy.sparse.linalg.splu, in a minimum-degree order computed once per film) on the nodes of the conducting paths
+that join the edges. The inflow and the
 outflow are the reactions of the assembled operator at the edge nodes; they balance to the solver's round-off.
 """
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import csr_matrix
+from scipy.sparse import csr_matrix, diags
 from scipy.sparse.linalg import splu
 
 from exchange.seal.percolation import element_coefficients, leak_path_nodes
 from exchange.seal.viscosity import mean_free_path
 
 __all__ = ["FilmSolution", "solve_film", "film_conductance", "film_mass_flow", "element_energies",
-           "SLIP_RTOL", "SLIP_MAX_ITERATIONS"]
+           "SLIP_RTOL", "SLIP_MAX_ITERATIONS", "GUESS_TOL"]
 
 #: Relative change of the mass flow below which the slip iteration stops [-].
 SLIP_RTOL = 1e-13
 #: Iterations before the slip iteration is declared failed [-].
 SLIP_MAX_ITERATIONS = 100
+#: Componentwise backward error at which a guessed field is kept instead of a direct solve [-].
+GUESS_TOL = 1e-14
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,20 +89,59 @@ def _assemble(film, k_tri, k_quad, used_tri, used_quad):
     return csr_matrix((data, indices, indptr), shape=(n, n))
 
 
+#: The elimination rank of each film's nodes (:func:`_elimination_rank`), computed once per film.
+_RANKS = weakref.WeakKeyDictionary()
+
+
+def _elimination_rank(film):
+    """(n,) rank of every node in a fill-reducing elimination order of the film's interior system (−1 on the
+    edges): SuperLU's minimum degree on AᵀA + A of the film's pattern, computed once per film. The pattern is fixed
+    and only the coefficients change between solves, so each solve takes its free nodes in this order instead of
+    ordering again (the order restricted to a subset stays fill-reducing)."""
+    rank = _RANKS.get(film)
+    if rank is None:
+        indptr, indices = film.pattern
+        interior = np.flatnonzero(~film.high & ~film.low)
+        rank = np.full(film.n_nodes, -1)
+        n = film.n_nodes
+        pattern = csr_matrix((np.ones(len(indices)), indices, indptr), shape=(n, n))[interior][:, interior]
+        # strictly diagonally dominant on the same pattern: the order depends on the pattern only
+        spd = diags(2.0 * np.asarray(pattern.sum(axis=1)).ravel() + 2.0) - pattern
+        rank[interior] = splu(spd.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                              options={"SymmetricMode": True}).perm_c if len(interior) else []
+        _RANKS[film] = rank
+    return rank
+
+
 def _solve(matrix, rhs):
-    """Direct sparse solve of the symmetric positive definite film system (SuperLU, minimum-degree ordering of
-    AᵀA + A with symmetric pivoting: about 1.7× faster than the default column ordering on a 20k-node ring)."""
+    """Direct sparse solve of the symmetric positive definite film system, its rows and columns already in
+    elimination order (:func:`_elimination_rank`): SuperLU with symmetric (diagonal) pivoting and small
+    supernodes (relax = panel size = 4: a film's supernodes are narrow; about 1.3× faster than the defaults on
+    rings of 5k to 80k nodes, the same factors)."""
     if matrix.shape[0] == 1:
         return rhs / matrix.toarray().ravel()
-    lu = splu(matrix, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    lu = splu(matrix, permc_spec="NATURAL", diag_pivot_thresh=0.0, relax=4, panel_size=4,
+              options={"SymmetricMode": True})
     return lu.solve(rhs)
 
 
-def solve_film(film, k_tri, k_quad, u_high, u_low):
+def _accepted(matrix, rhs, x):
+    """``x`` if it solves matrix·x = rhs to a componentwise backward error of GUESS_TOL in every row
+    (Oettli–Prager: |A x − b| <= tol·(|A| |x| + |b|), x then exactly solves a system whose entries differ by at
+    most that relative amount, as a direct solve's do by round-off), else None."""
+    if x is None or not np.isfinite(x).all():
+        return None
+    bound = abs(matrix) @ np.abs(x) + np.abs(rhs)
+    return x if np.all(np.abs(matrix @ x - rhs) <= GUESS_TOL * bound) else None
+
+
+def solve_film(film, k_tri, k_quad, u_high, u_low, guess=None):
     """Solve ∇·(k∇u) = 0 with u = ``u_high`` on the pressurised edge and ``u_low`` on the outer edge.
 
-    ``k_tri``, ``k_quad`` element coefficients [m³] (:func:`exchange.seal.percolation.element_coefficients`).
-    Returns a :class:`FilmSolution`.
+    ``k_tri``, ``k_quad`` element coefficients [m³] (:func:`exchange.seal.percolation.element_coefficients`);
+    ``guess`` (n,) a field u tried first (e.g. the solution at a neighbouring load): kept where it solves this
+    system to round-off (:func:`_accepted`; a film whose coefficients all scale by one factor has the same field),
+    else the system is factorised. Returns a :class:`FilmSolution`.
     """
     through, high_side, low_side = leak_path_nodes(film, k_tri, k_quad)
     u = np.full(film.n_nodes, np.nan)
@@ -113,13 +156,16 @@ def solve_film(film, k_tri, k_quad, u_high, u_low):
     free = through & ~film.high & ~film.low
     u[fixed_high], u[fixed_low] = u_high, u_low
     if free.any():
-        fixed = fixed_high | fixed_low
-        a_ff = matrix[free][:, free].tocsc()
-        rhs = -(matrix[free][:, fixed] @ u[fixed])
-        u[free] = _solve(a_ff, rhs)
+        order = np.flatnonzero(free)
+        order = order[np.argsort(_elimination_rank(film)[order], kind="stable")]
+        rows = matrix[order]
+        rhs = -(rows[:, fixed_high | fixed_low] @ u[fixed_high | fixed_low])
+        a_ff = rows[:, order].tocsc()
+        x = None if guess is None else _accepted(a_ff, rhs, np.asarray(guess, float)[order])
+        u[order] = _solve(a_ff, rhs) if x is None else x
     field = np.where(through, u, 0.0)
     reaction = matrix @ field
-    energy = float(field @ reaction)
+    energy = float(np.sum(field * reaction))  # not a BLAS dot: its idle threads spin and cost CPU
     flux = energy / (u_high - u_low) if u_high != u_low else 0.0
     return FilmSolution(flux, float(reaction[fixed_high].sum()), float(-reaction[fixed_low].sum()), u, k_tri,
                         k_quad, False)
@@ -138,9 +184,10 @@ def element_energies(film, solution):
     return tuple(out)
 
 
-def film_conductance(film, gaps, power=3):
+def film_conductance(film, gaps, power=3, guess=None):
     """The film's conductance K [m³] for nodal gaps ``gaps`` (n,) [m], and its :class:`FilmSolution` (u from 1 on
-    the pressurised edge to 0 on the outer edge); ``power`` 2 gives the slip conductance K_2 [m²] (k = h²).
+    the pressurised edge to 0 on the outer edge); ``power`` 2 gives the slip conductance K_2 [m²] (k = h²);
+    ``guess`` a field tried first (:func:`solve_film`).
 
     >>> from exchange.seal.film import seal_film
     >>> from exchange.seal.meshes import annulus_mesh
@@ -149,7 +196,7 @@ def film_conductance(film, gaps, power=3):
     >>> float(round(K / (2 * np.pi * 1e-15 / np.log(2.0)), 12))  # 2π h³ / ln(ro/ri)
     1.0
     """
-    solution = solve_film(film, *element_coefficients(film, gaps, power), 1.0, 0.0)
+    solution = solve_film(film, *element_coefficients(film, gaps, power), 1.0, 0.0, guess)
     return solution.flux, solution
 
 
