@@ -188,7 +188,7 @@ def damping_of(clearance, closed, law):
     return 0.0, False
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")  # called per seat node in every right-hand side: a call there costs 1.2x
 def seat_node(g, v_rel, area, law):
     r"""(pressure [Pa], closed, within the damping clearance) of one seat node with gap ``g`` [m] (overclosure
     −g), approach speed ``v_rel`` [m/s] and tributary area ``area`` [m²]; ``law`` the seat's parameters
