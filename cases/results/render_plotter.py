@@ -111,9 +111,14 @@ def _dots(image, cam, depth, frame, diameter: float, tolerance: float) -> None:
         draw.ellipse([x - 0.5 - r, y - 0.5 - r, x - 0.5 + r, y - 0.5 + r], fill=ACTIVE_NODE_RGB)
 
 
-def _outline(image, cam, depth, vertices, faces, facing, width: float, tolerance: float) -> None:
-    """The silhouette of one body (:func:`cases.results.raster.silhouette_edges`) in :data:`SILHOUETTE_RGB`,
-    ``width`` px wide, where the opaque surfaces do not hide the edge's middle."""
+OUTLINE_SAMPLES = 3
+"""The outline is drawn on a grid this many times finer per side and averaged down (antialiased)."""
+
+
+def _outline(mask, cam, depth, vertices, faces, facing, width: float, tolerance: float, origin) -> None:
+    """Draw the silhouette of one body (:func:`cases.results.raster.silhouette_edges`), ``width`` px wide, into
+    ``mask`` (a Pillow "L" image of the picture's box from pixel ``origin`` (x, y), :data:`OUTLINE_SAMPLES` times
+    finer) where the opaque surfaces do not hide the edge's middle."""
     from PIL import ImageDraw
 
     edges = silhouette_edges(faces, facing > 0.0)
@@ -121,13 +126,33 @@ def _outline(image, cam, depth, vertices, faces, facing, width: float, tolerance
         return
     v = np.asarray(vertices, dtype=np.float64)
     _, visible = _visible(cam, depth, (v[edges[:, 0]] + v[edges[:, 1]]) / 2.0, tolerance)
-    ends = cam.project(v)[:, :2] - 0.5
-    draw, w, r = ImageDraw.Draw(image), max(int(round(width)), 1), max(width, 1.0) / 2.0 - 0.5
+    ends = (cam.project(v)[:, :2] - origin) * OUTLINE_SAMPLES - 0.5
+    draw, w = ImageDraw.Draw(mask), max(int(round(width * OUTLINE_SAMPLES)), 1)
+    r = w / 2.0
     for a, b in edges[visible].tolist():
         (x0, y0), (x1, y1) = ends[a], ends[b]
-        draw.line([(x0, y0), (x1, y1)], fill=SILHOUETTE_RGB, width=w)
-        if r > 0.0:  # round joints
-            draw.ellipse([x1 - r, y1 - r, x1 + r, y1 + r], fill=SILHOUETTE_RGB)
+        draw.line([(x0, y0), (x1, y1)], fill=255, width=w)
+        draw.ellipse([x1 - r, y1 - r, x1 + r, y1 + r], fill=255)  # round joints
+
+
+def _outlines(view, cam, depth, bodies, facing, width: float, tolerance: float) -> None:
+    """Blend the bodies' outlines (antialiased, ``width`` px) into ``view``, drawn on a finer grid over the box
+    of the bodies' projections only."""
+    from PIL import Image
+
+    corners = cam.project(np.concatenate([np.asarray(v, dtype=np.float64).reshape(-1, 3) for v, *_ in bodies]))
+    low = np.clip(np.floor(np.nanmin(corners[:, :2], axis=0) - width - 1), 0, [cam.width, cam.height]).astype(int)
+    high = np.clip(np.ceil(np.nanmax(corners[:, :2], axis=0) + width + 1), 0, [cam.width, cam.height]).astype(int)
+    if (high <= low).any():
+        return
+    mask = Image.new("L", tuple((high - low) * OUTLINE_SAMPLES), 0)
+    start = 0
+    for v, f, *_ in bodies:
+        _outline(mask, cam, depth, v, f, facing[start:start + len(f)], width, tolerance, low)
+        start += len(f)
+    cover = np.asarray(mask.reduce(OUTLINE_SAMPLES), dtype=np.float64)[..., None] / 255.0
+    box = view[low[1]:high[1], low[0]:high[0]]
+    box[...] = box * (1.0 - cover) + np.asarray(SILHOUETTE_RGB, dtype=np.float64) * cover
 
 
 def _blend(view, depth, layers, tolerance) -> None:
@@ -175,15 +200,10 @@ def picture(frame, camera, window_size, context_opacity=1.0, rays=None) -> np.nd
     layers = [(_layer(cam, rays, parts), alpha) for parts, alpha in ((context, context_opacity), (bodies, BODY_OPACITY))
               if parts]
     _blend(view, depth, layers, tolerance)
-    image = Image.fromarray(np.rint(view).astype(np.uint8))
     if bodies:
-        _, _, _, _, facing = layers[-1][0]
-        start = 0
-        for v, f, *_ in bodies:
-            _outline(image, cam, depth, v, f, facing[start:start + len(f)],
-                     SILHOUETTE_WIDTH * max(cam.height / 600.0, 0.5), 3.0 * pixel)
-            start += len(f)
-    return np.asarray(image)
+        _outlines(view, cam, depth, bodies, layers[-1][0][4], max(SILHOUETTE_WIDTH * cam.height / 600.0, 2.0),
+                  3.0 * pixel)
+    return np.rint(view).astype(np.uint8)
 
 
 class FramePlotter:
