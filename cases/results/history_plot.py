@@ -62,8 +62,8 @@ def history_panels(columns: list, history: np.ndarray, overlay: dict | None = No
 def nice_ticks(low: float, high: float, most: int = 6) -> np.ndarray:
     """At most ``most`` round ticks (1, 2, 2.5 or 5 times a power of ten apart) within [low, high].
 
-    >>> nice_ticks(118.0, 262.0).tolist()
-    [120.0, 160.0, 200.0, 240.0]
+    >>> nice_ticks(112.8, 263.0).tolist()
+    [125.0, 150.0, 175.0, 200.0, 225.0, 250.0]
     >>> nice_ticks(0.0, 1.0).tolist()
     [0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
     """
@@ -71,9 +71,11 @@ def nice_ticks(low: float, high: float, most: int = 6) -> np.ndarray:
     if not span > 0.0 or not math.isfinite(span):
         return np.array([low])
     power = 10.0 ** math.floor(math.log10(span / most))
-    step = next(m * power for m in (1.0, 2.0, 2.5, 5.0, 10.0, 20.0) if span / (m * power) < most)
-    first = math.ceil(low / step - 1e-9)
-    return np.arange(first, math.floor(high / step + 1e-9) + 1) * step
+    for step in (m * power for m in (1.0, 2.0, 2.5, 5.0, 10.0, 20.0, 25.0, 50.0, 100.0)):
+        first, last = math.ceil(low / step - 1e-9), math.floor(high / step + 1e-9)
+        if last - first + 1 <= most:
+            break
+    return np.arange(first, last + 1) * step
 
 
 def tick_labels(ticks) -> tuple[list, str]:
