@@ -24,7 +24,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["Camera", "face_ids", "face_normals", "plane_depth", "silhouette_edges", "triangles_of"]
+__all__ = ["Camera", "edge_topology", "face_ids", "face_normals", "plane_depth", "silhouette_edges", "triangles_of"]
 
 
 class Camera:
@@ -94,16 +94,16 @@ def face_ids(shape, corners, valid, order, first_id: int = 1) -> np.ndarray:
     height, width = shape
     image = Image.new("I", (width, height), 0)
     draw = ImageDraw.Draw(image)
-    pts = corners - 0.5  # Pillow's pixel (i, j) is centred on the integer point, VTK's on i + 0.5
-    quads = valid[:, 3]
-    polygon = draw.polygon
-    for k in order.tolist():
-        p = pts[k]
-        if quads[k]:
-            polygon([(p[0, 0], p[0, 1]), (p[1, 0], p[1, 1]), (p[2, 0], p[2, 1]), (p[3, 0], p[3, 1])],
-                    fill=first_id + k)
-        else:
-            polygon([(p[0, 0], p[0, 1]), (p[1, 0], p[1, 1]), (p[2, 0], p[2, 1])], fill=first_id + k)
+    flat = (np.asarray(corners, dtype=np.float64) - 0.5).reshape(len(corners), 8)  # Pillow centres pixels on integers
+    quads = valid[:, 3].tolist()
+    core = getattr(draw, "draw", None)  # Pillow's C drawing object: an "I" image's ink is the integer itself
+    if core is not None and hasattr(core, "draw_polygon") and core.draw_ink(first_id + 7) == first_id + 7:
+        polygon = core.draw_polygon
+        for k, xy in zip(order.tolist(), flat[order].tolist()):
+            polygon(xy if quads[k] else xy[:6], first_id + k, 1)
+    else:
+        for k, xy in zip(order.tolist(), flat[order].tolist()):
+            draw.polygon(xy if quads[k] else xy[:6], fill=first_id + k)
     return np.asarray(image, dtype=np.int32)
 
 
@@ -133,14 +133,14 @@ def silhouette_edges(faces, front) -> np.ndarray:
     [[0, 1], [0, 2], [0, 3], [1, 2], [2, 3]]
     """
     f = np.ascontiguousarray(np.asarray(faces, dtype=np.int64).reshape(len(faces), -1))
-    unique, inverse, owner = _edge_topology(f.tobytes(), f.shape[1])
+    unique, inverse, owner = edge_topology(f.tobytes(), f.shape[1])
     counts = np.bincount(inverse, minlength=len(unique))
     fronts = np.bincount(inverse, weights=np.asarray(front)[owner].astype(np.float64), minlength=len(unique))
     return unique[(counts == 1) | ((fronts > 0) & (fronts < counts))]
 
 
 @lru_cache(maxsize=16)
-def _edge_topology(data: bytes, corners: int):
+def edge_topology(data: bytes, corners: int):
     """(unique edges (e, 2), edge of each face side (s,), face of each side (s,)) of -1 padded faces."""
     f, valid = triangles_of(np.frombuffer(data, dtype=np.int64).reshape(-1, corners))
     quad = valid[:, 3]

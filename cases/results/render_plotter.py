@@ -7,11 +7,9 @@ bodies' edge lists are kept between pictures, so a picture costs the drawing of 
 """
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
-from cases.results.raster import Camera, face_ids, face_normals, plane_depth, silhouette_edges, triangles_of
+from cases.results.raster import Camera, edge_topology, face_ids, face_normals, plane_depth, silhouette_edges, triangles_of
 from cases.results.render_annotate import annotate
 from cases.results.render_style import (ACTIVE_NODE_RGB, BACKGROUND_RGB, BODY_OPACITY, BODY_RGB, CONTEXT_RGB, EDGE_RGB, LEGEND,
                                        SILHOUETTE_RGB, SILHOUETTE_WIDTH, VIEW_ANGLE, fraction_rgb, title)
@@ -28,14 +26,8 @@ def closed(faces) -> bool:
     cells = np.asarray(faces, dtype=np.int64)
     if cells.ndim != 2 or not len(cells) or (cells < 0).any():
         return False
-    return _closed(cells.tobytes(), cells.shape[1])
-
-
-@lru_cache(maxsize=32)
-def _closed(data: bytes, corners: int) -> bool:
-    cells = np.frombuffer(data, dtype=np.int64).reshape(-1, corners)
-    edges = np.sort(np.stack([cells, np.roll(cells, -1, axis=1)], axis=-1).reshape(-1, 2), axis=1)
-    return bool((np.unique(edges, axis=0, return_counts=True)[1] == 2).all())
+    _, inverse, _ = edge_topology(np.ascontiguousarray(cells).tobytes(), cells.shape[1])
+    return bool((np.bincount(inverse) == 2).all())
 
 
 def edge_pixels(frame, camera, window_size) -> float:
