@@ -148,5 +148,7 @@ def edge_topology(data: bytes, corners: int):
     edges = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], np.column_stack([f[:, 2], last]),
                             np.column_stack([f[quad, 3], f[quad, 0]])])
     owner = np.concatenate([np.tile(np.arange(len(f)), 3), np.flatnonzero(quad)])
-    unique, inverse = np.unique(np.sort(edges, axis=1), axis=0, return_inverse=True)
-    return unique, inverse.ravel(), owner
+    low, high = edges.min(axis=1), edges.max(axis=1)
+    span = int(high.max()) + 1 if len(edges) else 1
+    keys, inverse = np.unique(low * span + high, return_inverse=True)  # one integer a vertex pair: a 1-D unique
+    return np.column_stack([keys // span, keys % span]), inverse.ravel(), owner
