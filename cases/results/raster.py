@@ -98,8 +98,8 @@ def face_ids(shape, corners, valid, order, first_id: int = 1) -> np.ndarray:
     quads = valid[:, 3].tolist()
     core = getattr(draw, "draw", None)  # Pillow's C drawing object: an "I" image's ink is the integer itself
     if core is not None and hasattr(core, "draw_polygon") and core.draw_ink(first_id + 7) == first_id + 7:
-        polygon = core.draw_polygon
-        for k, xy in zip(order.tolist(), flat[order].tolist()):
+        polygon = core.draw_polygon  # takes the corners as a buffer of float32 (x, y) pairs
+        for k, xy in zip(order.tolist(), flat[order].astype(np.float32)):
             polygon(xy if quads[k] else xy[:6], first_id + k, 1)
     else:
         for k, xy in zip(order.tolist(), flat[order].tolist()):
