@@ -34,8 +34,8 @@ LEFT, RIGHT, TOP, BOTTOM, GAP = 80, 16, 45, 50, 55
 
 _PANELS = [("pressure [Pa]", "pressure [kPa]", 1e-3), ("temperature [K]", "temperature [K]", 1.0),
            ("mass_flow [kg/s]", "mass flow [kg/s]", 1.0), (".area [m^2]", "exchange area [mm^2]", 1e6)]
-_OPTIONAL = [(".blocked_fraction [-]", "blocked fraction [-]", 1.0), (".displacement [m]", "body displacement [mm]", 1e3),
-             ("max_cpress [Pa]", "max CPRESS [kPa]", 1e-3)]
+_OPTIONAL = [(".blocked_fraction [-]", "blocked fraction [-]", 1.0),
+             (".displacement [m]", "body displacement [mm]", 1e3), ("max_cpress [Pa]", "max CPRESS [kPa]", 1e-3)]
 
 
 def history_panels(columns: list, history: np.ndarray, overlay: dict | None = None) -> list:

@@ -1,18 +1,21 @@
 """One off-screen plotter reused for every picture of a run, drawn by ventsim's own software renderer.
 
 :mod:`cases.results.raster` draws the faces (NumPy and Pillow, no OpenGL): the leakage surface opaque with one flat
-colour per face and its edges, the active nodes as dots, the context surfaces (the cavity) and the bodies translucent,
-front faces only, lit by a head light, and the bodies' silhouettes opaque on top. The pixel rays of the camera and the
-bodies' edge lists are kept between pictures, so a picture costs the drawing of its faces alone.
+colour per face and its edges, the active nodes as dots, the context surfaces (the cavity) and the bodies translucent
+(a closed one by its front faces only), lit by a head light, and the bodies' silhouettes opaque and antialiased where no
+opaque face hides them. The camera's pixel rays (per plotter) and the meshes' edge tables (per process) are kept
+between pictures, so a picture costs the drawing of its faces alone.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from cases.results.raster import Camera, edge_topology, face_ids, face_normals, plane_depth, silhouette_edges, triangles_of
+from cases.results.raster import (Camera, edge_topology, face_ids, face_normals, plane_depth, silhouette_edges,
+                                  triangles_of)
 from cases.results.render_annotate import annotate
-from cases.results.render_style import (ACTIVE_NODE_RGB, BACKGROUND_RGB, BODY_OPACITY, BODY_RGB, CONTEXT_RGB, EDGE_RGB, LEGEND,
-                                       SILHOUETTE_RGB, SILHOUETTE_WIDTH, VIEW_ANGLE, fraction_rgb, title)
+from cases.results.render_style import (ACTIVE_NODE_RGB, BACKGROUND_RGB, BODY_OPACITY, BODY_RGB, CONTEXT_RGB,
+                                        EDGE_RGB, LEGEND, SILHOUETTE_RGB, SILHOUETTE_WIDTH, VIEW_ANGLE, fraction_rgb,
+                                        title)
 
 __all__ = ["FramePlotter", "closed", "edge_pixels", "picture"]
 
