@@ -66,7 +66,8 @@ class Camera:
 
 def triangles_of(faces) -> tuple[np.ndarray, np.ndarray]:
     """(m, 3|4) faces, -1 padded, as (corner indices (m, 4), valid (m, 4) bool): a triangle repeats no corner."""
-    f = np.asarray(faces, dtype=np.int64).reshape(len(faces), -1)
+    f = np.asarray(faces, dtype=np.int64)
+    f = f if f.ndim == 2 else f.reshape(len(f), -1)
     if f.shape[1] == 3:
         f = np.column_stack([f, np.full(len(f), -1)])
     return f, f >= 0
