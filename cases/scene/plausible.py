@@ -6,8 +6,8 @@ value and the likely mistake.
 - a gas temperature below 150 K (a temperature in °C) or above 10,000 K;
 - an exchange or inflator orifice area larger than twice its cavity's mesh surface, or (a cavity given by its
   volume) a thousand times the surface of a sphere of that volume (an area in mm² or cm²);
-- a cavity volume above 100 m³; or of 1 m³ or more whose inflators add less than 0.1 % of the gas it holds, or
-  that only vents and whose vents would take more than 1000 times ``time.end`` to relieve it (litres or mm³);
+- a cavity volume above 100 m³, or one whose run would change less than 0.3 % of its gas (its inflators' mass
+  and its vents' time constant against ``time.end``: :mod:`cases.scene.plausible_volume`) (litres or mm³);
 - a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
   tolerance above 1 m (millimetres).
 
@@ -20,19 +20,16 @@ import math
 from cavity.tables import Table
 
 from cases.scene.errors import SceneError
+from cases.scene.plausible_volume import MIN_RESPONSE, check_responses
 from cases.scene.unit_systems import SYSTEMS
 
-__all__ = ["check_plausible", "gas_temperatures", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT", "MIN_INFLATED"]
+__all__ = ["check_plausible", "gas_temperatures", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT",
+           "MIN_RESPONSE"]
 
 #: Lowest absolute pressure [Pa], gas temperature [K], largest cavity volume [m^3] and mesh or body extent [m]
-#: a scene may give without an explicit override; least share of a cavity's gas its inflators must add [-].
-MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT, MIN_INFLATED = 1e3, 150.0, 100.0, 50.0, 1e-3
+#: a scene may give without an explicit override.
+MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT = 1e3, 150.0, 100.0, 50.0
 MAX_TOLERANCE = 1.0
-#: Most vent time constants in time.end of a cavity that only vents (the library's scenes: 12 at most).
-MAX_VENT_TIMES = 1e3
-#: Cavities of at least this volume [m^3] are checked against their inflators and vents (a short preview of a
-#: small vessel is not a mistake).
-MIN_VENTED_VOLUME = 1.0
 #: Surface of a sphere of volume V is SPHERE·V^(2/3), the least surface that can enclose V.
 SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
 #: An area may be at most this many times its cavity's mesh surface, or the surface of a sphere of its volume (a
@@ -40,7 +37,6 @@ SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
 MESH_AREA_FACTOR, SPHERE_AREA_FACTOR = 2.0, 1000.0
 #: Highest gas temperature [K] and lowest molar mass [kg/mol] (atomic hydrogen: 1.008e-3) taken without override.
 MAX_TEMPERATURE, MIN_MOLAR_MASS = 1e4, 1e-3
-_R_AIR = 287.05  # J/(kg K), for the order of magnitude of a cavity's gas mass
 
 
 class _Checker:
@@ -70,7 +66,7 @@ def check_plausible(scene, path) -> None:
     _temperatures(c)
     volumes = _volumes(c)
     _areas(c, volumes)
-    _inflated(c, volumes)
+    check_responses(c, volumes, _integral)
     _lengths(c)
     _coefficients(c)
 
@@ -170,46 +166,6 @@ def _areas(c: _Checker, volumes: list) -> None:
                           f"{bound:.3g} m^2): an "
                           f"area in mm^2 ({a:g} mm^2 = {a * 1e-6:.6g} m^2) or cm^2 ({a * 1e-4:.6g} m^2)? Areas are "
                           "in m^2")
-
-
-def _inflated(c: _Checker, volumes: list) -> None:
-    """A cavity of MIN_VENTED_VOLUME or more filled by inflators whose whole gas would not change its pressure, or
-    vented orders of magnitude too slowly for time.end: its volume is orders too large."""
-    end = c.scene.time.end
-    for i, cav in enumerate(c.scene.cavity):
-        where, v, _ = volumes[i]
-        if cav.fluid != "gas" or not v or v < MIN_VENTED_VOLUME:
-            continue  # a short preview of a small cavity is not a mistake
-        if not cav.inflator:
-            _vented(c, cav, where, v)
-            continue
-        added = 0.0
-        for inf in cav.inflator:
-            if inf.type != "mass_temperature" or inf.mass_flow is None:
-                added = math.inf  # the other types' mass is not known before the run
-                break
-            last = inf.mass_flow.x[-1] if isinstance(inf.mass_flow, Table) else 0.0
-            added += inf.scale * _integral(inf.mass_flow, max(end - inf.start, last))
-        held = cav.pressure * v / (_R_AIR * cav.temperature)
-        if added < MIN_INFLATED * held:
-            c.fail(where, f"{v:.6g} m^3 holds about {held:.3g} kg of gas and its inflators add {added:.3g} kg in all "
-                          f"({added / held:.2%}): a volume in litres ({v:g} L = {v * 1e-3:.6g} m^3) or "
-                          "mm^3? Volumes are in m^3")
-
-
-def _vented(c: _Checker, cav, where: str, v: float) -> None:
-    """A cavity that only vents, whose vents would take more than MAX_VENT_TIMES·time.end to relieve it (time
-    constant V/(Cd·A·c₀), Cd 0.6, air's speed of sound): its volume is orders too large for the scene."""
-    area = sum(e.effective_area or e.area for e in c.scene.exchange if cav.name in (e.from_, e.to)
-               and not e.leakage_table and e.law in ("orifice", "fabric_leakage"))
-    if not area or any(cav.name == e.from_ and (e.pop_pressure or e.open_time)
-                                                for e in c.scene.exchange):
-        return
-    tau = v / (0.6 * area * math.sqrt(1.4 * _R_AIR * cav.temperature))
-    if tau > MAX_VENT_TIMES * c.scene.time.end:
-        c.fail(where, f"{v:.6g} m^3 would take about {tau:.3g} s to vent through {area:.3g} m^2, "
-                      f"{tau / c.scene.time.end:.3g} times time.end: a volume in litres ({v:g} L = {v * 1e-3:.6g} "
-                      "m^3) or mm^3? Volumes are in m^3")
 
 
 def _integral(rate, span: float) -> float:
