@@ -6,8 +6,8 @@ value and the likely mistake.
 - a gas temperature below 150 K (a temperature in °C) or above 10,000 K;
 - an exchange or inflator orifice area larger than twice its cavity's mesh surface, or (a cavity given by its
   volume) a thousand times the surface of a sphere of that volume (an area in mm² or cm²);
-- a cavity volume above 100 m³, or one whose run would change less than 0.3 % of its gas (its inflators' mass
-  and its vents' time constant against ``time.end``: :mod:`cases.scene.plausible_volume`) (litres or mm³);
+- a cavity volume above 100 m³, or one whose run would change less than 0.3 % of its gas (its inflator tables'
+  mass and its vents' time constant: :mod:`cases.scene.plausible_volume`) (litres or mm³);
 - a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
   tolerance above 1 m (millimetres).
 

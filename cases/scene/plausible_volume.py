@@ -1,20 +1,26 @@
 """A cavity volume orders of magnitude too large for its own scene: what the run would do to the cavity's gas.
 
-A cavity given by ``volume`` (or ``volume_table``) holds m = p·V/(R·T) of gas. By ``time.end`` its inflators add
-m_in (their whole tables) and its vents, all taken as open (also pop and blocked vents), relieve it with the time
-constant τ = V/(Cd·A·c₀) (Cd 0.6, c₀ = √(1.4·R·T)). The response
+A cavity given by ``volume`` (or a constant ``volume_table``) holds m = p·V/(R·T) of gas. Over a time t_ref its
+inflators add m_in and its vents, all taken as open (also pop and blocked vents), relieve it with the time constant
+τ = V/(Cd·A·c₀) (Cd 0.6, c₀ = √(1.4·R_air·T)). The response
 
-    r = max(m_in / m, time.end / τ)
+    r = max(m_in / m, t_ref / τ)
 
-is the share of its gas the run can change; both terms are inversely proportional to V. The library's least r is
-0.082 (a 1 L tank vented 20 ms through 20 mm²; benchmarks/volume_responses.py prints them all); a volume in litres
-taken for m³ divides it by 1000, in mm³ by 1e9. A cavity whose r is below :data:`MIN_RESPONSE` (3e-3, 27 times below
-the library's least)
-would hardly notice its own run: its volume is taken for a unit mistake, with one line naming the file, the key, the
-value, what it was compared with and the override. An upper bound of r is what counts, so a cavity is not judged
-when a flow it sees cannot be bounded before the run: an inflator type other than ``mass_temperature``, a vent of
-another law than ``orifice`` or ``fabric_leakage``, a flux table, an exchange with another cavity, or a volume
-table whose volume itself changes by more than the threshold.
+is the share of its gas the run can change; both terms are inversely proportional to V, so a volume in litres
+taken for m³ divides r by 1000, in mm³ by 1e9.
+
+- **Inflated by tables** (every inflator a ``mass_temperature`` with a ``mass_flow`` table): m_in is the tables'
+  whole mass and t_ref the later of ``time.end`` and the tables' end, so neither shrinks in a short preview. Below
+  :data:`MIN_RESPONSE` (3e-3; the library's least r is 0.082, ``benchmarks/volume_responses.py``) the volume is
+  taken for a unit mistake at any size.
+- **Otherwise** (vents only, or an inflator at a constant rate): t_ref is ``time.end`` alone, and a preview of a
+  run is as short against τ as a volume 1000 times too large: only a cavity of :data:`MIN_VENTED_VOLUME` (1 m³) or
+  more is judged, against :data:`MIN_UNTIMED_RESPONSE` (1e-3).
+
+The error is one line naming the file, the key, the value, what it was compared with and the override. A cavity is
+not judged when a flow it sees cannot be bounded before the run: an inflator type other than
+``mass_temperature``, a vent of another law than ``orifice`` or ``fabric_leakage``, a flux table, an exchange with
+another cavity, or a volume table whose volume itself changes by more than MIN_RESPONSE.
 
 >>> round(response(held=0.07, added=0.07, area=1.26e-3, volume=0.06, temperature=300.0, end=0.1), 3)
 1.0
@@ -27,11 +33,13 @@ import math
 
 from cavity.tables import Table
 
-__all__ = ["MIN_RESPONSE", "response", "check_responses"]
+__all__ = ["MIN_RESPONSE", "MIN_UNTIMED_RESPONSE", "MIN_VENTED_VOLUME", "response", "check_responses"]
 
-#: Least share of its gas a cavity's run may change (inflated or vented) without an override [-].
+#: Least share of its gas a cavity inflated by tables may change over t_ref without an override [-].
 MIN_RESPONSE = 3e-3
-#: Discharge coefficient of the vents' time constant [-], and air's gas constant [J/(kg K)] for a gas not known here.
+#: The same for a cavity without inflator tables (t_ref = time.end), judged from MIN_VENTED_VOLUME [m^3] up.
+MIN_UNTIMED_RESPONSE, MIN_VENTED_VOLUME = 1e-3, 1.0
+#: Discharge coefficient of the vents' time constant [-], and air's gas constant [J/(kg K)].
 CD, R_AIR = 0.6, 287.05
 #: Molar masses [kg/mol] of the common gases, for the held mass (other species: those of [[species]], else air).
 MOLAR = {"air": 0.028965, "N2": 0.0280134, "O2": 0.0319988, "CO2": 0.0440095, "H2": 0.00201588, "He": 0.0040026,
@@ -41,12 +49,12 @@ _VENT_LAWS = ("orifice", "fabric_leakage")
 
 def response(*, held: float, added: float, area: float, volume: float, temperature: float, end: float) -> float:
     """max(added / held, end / τ) with τ = volume / (CD·area·√(1.4·R_AIR·temperature)): the share of a cavity's gas
-    [-] its inflators (``added`` of ``held`` [kg]) or its vents (``area`` [m²]) can change by ``end`` [s]."""
+    [-] its inflators (``added`` of ``held`` [kg]) or its vents (``area`` [m²]) can change in ``end`` [s]."""
     vented = end * CD * area * math.sqrt(1.4 * R_AIR * temperature) / volume if area else 0.0
     return max(added / held if held > 0 else 0.0, vented)
 
 
-def _gas_constant(scene, gas: dict) -> float:
+def gas_constant(scene, gas: dict) -> float:
     """R [J/(kg K)] of a composition by mass (species of [[species]] or :data:`MOLAR`; air for the others)."""
     known = {sp.name: sp.molar_mass for sp in scene.species if sp.molar_mass}
     total = sum(gas.values()) or 1.0
@@ -54,18 +62,21 @@ def _gas_constant(scene, gas: dict) -> float:
     return 8.314462618 * inverse if inverse > 0 else R_AIR
 
 
-def _added(cav, end: float, integral) -> float | None:
-    """Mass [kg] the inflators add by time.end (a table: all of it); None when a type's mass is not known."""
-    total = 0.0
+def inflow(cav, end: float, integral) -> tuple | None:
+    """(mass [kg] the inflators add, t_ref [s], inflated by tables) of a cavity; None when a type's mass is not
+    known. Tables count whole and push t_ref to their end; a constant rate counts up to time.end."""
+    total, t_ref, tables = 0.0, end, bool(cav.inflator)
     for inf in cav.inflator:
         if inf.type != "mass_temperature" or inf.mass_flow is None:
             return None
-        last = inf.mass_flow.x[-1] if isinstance(inf.mass_flow, Table) else 0.0
+        table = isinstance(inf.mass_flow, Table)
+        last = inf.mass_flow.x[-1] if table else 0.0
         total += inf.scale * integral(inf.mass_flow, max(end - inf.start, last))
-    return total
+        t_ref, tables = (max(t_ref, inf.start + last), tables) if table else (t_ref, False)
+    return total, t_ref, tables
 
 
-def _vent_area(scene, name: str) -> float | None:
+def vent_area(scene, name: str) -> float | None:
     """Total area [m²] of the cavity's vents, all open; None when one of its exchanges cannot be bounded."""
     area = 0.0
     for e in scene.exchange:
@@ -78,27 +89,32 @@ def _vent_area(scene, name: str) -> float | None:
 
 
 def check_responses(c, volumes: list, integral) -> None:
-    """SceneError (through the checker ``c``) on a cavity whose run would change less than MIN_RESPONSE of its gas;
+    """SceneError (through the checker ``c``) on a cavity whose run would change too little of its gas;
     ``volumes`` as plausible._volumes gives them, ``integral(rate, span)`` the mass of an inflator rate."""
     scene = c.scene
-    end = scene.time.end
     for i, cav in enumerate(scene.cavity):
         where, v, _ = volumes[i]
         if cav.fluid not in ("gas", "real_gas") or not v or not where.endswith(("volume", "volume_table")):
             continue
-        added, area = _added(cav, end, integral), _vent_area(scene, cav.name)
-        if added is None or area is None or not (added or area) or _table_varies(c, cav, i):
+        flow, area = inflow(cav, scene.time.end, integral), vent_area(scene, cav.name)
+        if flow is None or area is None or not (flow[0] or area) or _table_varies(c, cav, i):
             continue
-        R = _gas_constant(scene, cav.gas)
-        held = cav.pressure * v / (R * cav.temperature)
-        r = response(held=held, added=added, area=area, volume=v, temperature=cav.temperature, end=end)
-        if r >= MIN_RESPONSE:
+        added, t_ref, tables = flow
+        least = MIN_RESPONSE if tables else MIN_UNTIMED_RESPONSE
+        if not tables and v < MIN_VENTED_VOLUME:
             continue
-        tau = v / (CD * area * math.sqrt(1.4 * R_AIR * cav.temperature)) if area else math.inf
-        vents = f"its vents ({area:.3g} m^2) would take {tau:.3g} s to relieve it" if area else "it has no vent"
-        c.fail(where, f"{c.given(v, (3, 0, 0), 'm^3')} is orders of magnitude too large for its scene: by time.end "
-                      f"({end:.3g} s) the run would change at most {r:.2g} of its gas ({held:.3g} kg; its inflators "
-                      f"add {added:.3g} kg, {vents}): {_hint(c, v)}")
+        held = cav.pressure * v / (gas_constant(scene, cav.gas) * cav.temperature)
+        r = response(held=held, added=added, area=area, volume=v, temperature=cav.temperature, end=t_ref)
+        if r < least:
+            _fail(c, where, v, r, held, added, area, t_ref, cav.temperature)
+
+
+def _fail(c, where, v, r, held, added, area, t_ref, temperature) -> None:
+    tau = v / (CD * area * math.sqrt(1.4 * R_AIR * temperature)) if area else math.inf
+    vents = f"its vents ({area:.3g} m^2) would take {tau:.3g} s to relieve it" if area else "it has no vent"
+    c.fail(where, f"{c.given(v, (3, 0, 0), 'm^3')} is orders of magnitude too large for its scene: in {t_ref:.3g} s "
+                  f"(time.end or its inflator tables' end) the run would change at most {r:.2g} of its gas "
+                  f"({held:.3g} kg; its inflators add {added:.3g} kg, {vents}): {_hint(c, v)}")
 
 
 def _table_varies(c, cav, i: int) -> bool:
