@@ -176,3 +176,11 @@ def test_files_are_converted_too(bag, tmp_path):
     for k in ("mass_flow", "temperature"):  # the tables (time [ms], kg/ms or K) are converted as they are read
         a, b = getattr(scene.cavity[0].inflator[0], k), getattr(ref.cavity[0].inflator[0], k)
         assert np.allclose(a.x, b.x, rtol=1e-12, atol=0) and np.allclose(a.y, b.y, rtol=1e-12, atol=0)
+
+
+def test_pa_in_a_millimetre_scene_is_one_line_naming_it(bag):
+    """The main scene's SI numbers under [units] system = "mm-t-s": 1 atm read as 101325 MPa."""
+    message = one_line(bag("[time]", '[units]\nsystem = "mm-t-s"\n\n[time]'))
+    assert ": ambient.pressure: 101325 in mm-t-s (1.01325e+11 Pa) is above 1e+10 Pa" in message
+    assert "a pressure in Pa in a mm-t-s scene, whose pressures are in MPa?" in message
+    assert "[units] unchecked" in message

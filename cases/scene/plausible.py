@@ -2,7 +2,8 @@
 would otherwise run silently or for minutes, each a one-line :class:`SceneError` naming the file, the key, the
 value and the likely mistake.
 
-- an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure);
+- an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure), or above 10 GPa (a pressure in
+  Pa in an mm-t-s or mm-kg-ms scene);
 - a gas temperature below 150 K (a temperature in °C) or above 10,000 K;
 - an exchange or inflator orifice area larger than twice its cavity's mesh surface, or (a cavity given by its
   volume) a thousand times the surface of a sphere of that volume (an area in mm² or cm²);
@@ -30,6 +31,9 @@ __all__ = ["check_plausible", "gas_temperatures", "MIN_PRESSURE", "MIN_TEMPERATU
 #: a scene may give without an explicit override.
 MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT = 1e3, 150.0, 100.0, 50.0
 MAX_TOLERANCE = 1.0
+#: Highest absolute pressure [Pa] without override: 10 GPa, over ten times a hydraulic system's (700 MPa); the SI
+#: value of a pressure written in Pa in an mm-t-s scene is a million times it (1 bar: 1e11 Pa).
+MAX_PRESSURE = 1e10
 #: Surface of a sphere of volume V is SPHERE·V^(2/3), the least surface that can enclose V.
 SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
 #: An area may be at most this many times its cavity's mesh surface, or the surface of a sphere of its volume (a
@@ -79,6 +83,12 @@ def _pressures(c: _Checker) -> None:
             c.fail(where, f"{c.given(p, (-1, 1, -2), 'Pa')} is below 1 kPa absolute: a pressure in bar ({p:g} bar = "
                           f"{p * 1e5:.6g} Pa) or MPa ({p * 1e6:.6g} Pa), or a gauge pressure? Pressures are absolute "
                           "[Pa]")
+        if p > MAX_PRESSURE:
+            unit = {"mm-t-s": "MPa", "mm-kg-ms": "GPa"}.get(c.system.name)
+            why = (f"a pressure in Pa in a {c.system.name} scene, whose pressures are in {unit}?" if unit else
+                   "a pressure in a unit smaller than Pa, or a typo?")
+            c.fail(where, f"{c.given(p, (-1, 1, -2), 'Pa')} is above {MAX_PRESSURE:g} Pa, more than any gas or liquid "
+                          f"here holds: {why}")
 
 
 def gas_temperatures(scene) -> list:
