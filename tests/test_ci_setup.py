@@ -54,8 +54,9 @@ exec "{sys.executable}" "$@"
     script(bin_ / "sudo", 'exec "$@"\n')
 
     def run(apt_works: bool):
-        body = f'echo "$*" >> "{log}"\n' + (f'[ "$1" = install ] && touch "{marker}"\nexit 0\n' if apt_works else
-                                            '[ "$1" = update ] && exit 0\necho "E: Unable to locate package" >&2\nexit 100\n')
+        works = f'[ "$1" = install ] && touch "{marker}"\nexit 0\n'
+        offline = '[ "$1" = update ] && exit 0\necho "E: Unable to locate package" >&2\nexit 100\n'
+        body = f'echo "$*" >> "{log}"\n' + (works if apt_works else offline)
         script(bin_ / "apt-get", body)
         env = dict(os.environ, PATH=f"{bin_}{os.pathsep}{os.environ['PATH']}", PYTHON="python3")
         return subprocess.run(["bash", str(repo / ".ci" / "setup"), "venv"], cwd=tmp_path, env=env,
