@@ -10,7 +10,8 @@ value and the likely mistake.
 - a cavity volume above 100 m³, or one whose run would change less than 0.3 % of its gas (its inflator tables'
   mass and its vents' time constant: :mod:`cases.scene.plausible_volume`) (litres or mm³);
 - a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
-  tolerance above 1 m (millimetres).
+  tolerance above 1 m (millimetres);
+- a hydraulic cavity's bulk modulus outside 1e6 to 1e12 Pa or density outside 10 to 1e5 kg/m³ (another unit).
 
 ``[units] check = false`` turns them off; ``[units] unchecked = ["cavity[0].pressure"]`` exempts keys.
 """
@@ -73,6 +74,7 @@ def check_plausible(scene, path) -> None:
     check_responses(c, volumes, _integral)
     _lengths(c)
     _coefficients(c)
+    _liquids(c)
 
 
 def _pressures(c: _Checker) -> None:
@@ -238,3 +240,31 @@ def _coefficients(c: _Checker) -> None:
         if isinstance(top, float) and top > MAX_CD:
             c.fail(f"exchange[{j}].discharge_coefficient", f"{top:.6g} is above {MAX_CD:g}: a discharge coefficient "
                                                            "is at most about 1 (the ideal flow)")
+
+
+#: Liquid bulk modulus [Pa] (oil with entrained air ~1e7, water 2.2e9, diamond 4.4e11) and density [kg/m^3]
+#: (liquid hydrogen 71, osmium 22,600) taken without override.
+MIN_BULK_MODULUS, MAX_BULK_MODULUS, MIN_DENSITY, MAX_DENSITY = 1e6, 1e12, 10.0, 1e5
+
+
+def _liquids(c: _Checker) -> None:
+    """A hydraulic cavity's bulk modulus and density within the bounds above (a value in another unit: in the SI
+    value of an mm-t-s scene, 2.2e9 written for water's bulk modulus is 2.2e15 Pa)."""
+    name = c.system.name
+    units = {"mm-t-s": ("MPa", "t/mm^3"), "mm-kg-ms": ("GPa", "kg/mm^3")}.get(name)
+    for i, cav in enumerate(c.scene.cavity):
+        if cav.fluid != "hydraulic":
+            continue
+        k, rho = cav.bulk_modulus, cav.density
+        if k and not MIN_BULK_MODULUS <= k <= MAX_BULK_MODULUS:
+            why = (f"a bulk modulus in Pa in a {name} scene, whose pressures are in {units[0]}?" if units else
+                   f"a bulk modulus in MPa or GPa ({k:g} GPa = {k * 1e9:.6g} Pa)?" if k < MIN_BULK_MODULUS else
+                   "a typo?")
+            c.fail(f"cavity[{i}].bulk_modulus", f"{c.given(k, (-1, 1, -2), 'Pa')} is outside {MIN_BULK_MODULUS:g} to "
+                                                f"{MAX_BULK_MODULUS:g} Pa (water: 2.2e9 Pa): {why}")
+        if rho and not MIN_DENSITY <= rho <= MAX_DENSITY:
+            why = (f"a density in kg/m^3 in a {name} scene, whose densities are in {units[1]}?" if units else
+                   f"a density in g/cm^3 ({rho:g} g/cm^3 = {rho * 1e3:.6g} kg/m^3)?" if rho < MIN_DENSITY else
+                   "a typo?")
+            c.fail(f"cavity[{i}].density", f"{c.given(rho, (-3, 1, 0), 'kg/m^3')} is outside {MIN_DENSITY:g} to "
+                                           f"{MAX_DENSITY:g} kg/m^3 (water: 1000): {why}")
