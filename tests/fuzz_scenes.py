@@ -346,8 +346,24 @@ def m_vent(rng, data, work):
     return f"exchange {e.get('name')}: kind {kind}"
 
 
+def m_units(rng, data, work):
+    """A [units] table that does not fit: another system than the numbers and files are written in (its checks on
+    or off), an unknown system, or exemptions that name no key or are not a list of names."""
+    units = data.setdefault("units", {})
+    kind = rng.randrange(4)
+    if kind == 0:
+        units["system"] = rng.choice(("mm-t-s", "mm-kg-ms"))
+    elif kind == 1:
+        units.update(system=rng.choice(("mm-t-s", "mm-kg-ms")), check=False)
+    elif kind == 2:
+        units["system"] = rng.choice(("mm", "MKS", "", 3, "si"))
+    else:
+        units["unchecked"] = rng.choice((["cavity[0].volume"], ["no.such.key"], "cavity[0].volume", [1], []))
+    return f"units = {units!r}"
+
+
 MUTATIONS = (m_number, m_type, m_delete, m_typo, m_name, m_composition, m_time, m_csv, m_mesh, m_body,
-             m_structure, m_vent)
+             m_structure, m_vent, m_units)
 
 
 def encoding_text(rng, text: str) -> bytes:

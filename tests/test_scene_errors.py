@@ -93,6 +93,12 @@ def test_negative_and_wrongly_typed_values(case, capsys, tmp_path):
     assert "cavity[0].pressure" in err and "expected a number" in err
 
 
+def test_a_relative_tolerance_below_the_machine_precision_names_its_key(case, capsys, tmp_path):
+    """rtol 1e-300 made the compiled DOP853 divide by zero (a fuzz find): it is refused at load."""
+    err = error_of(capsys, case(FILL, "rtol = 1e-8", "rtol = 1e-300"), tmp_path)
+    assert "solver.rtol" in err and "2.22e-14 <= rtol < 1" in err
+
+
 def test_exchange_to_unknown_cavity(case, capsys, tmp_path, verification_dir):
     err = error_of(capsys, case("blowdown_choked.toml", 'to = "ambient"', 'to = "ambiant"'), tmp_path)
     assert "exchange[0].to" in err and "did you mean 'ambient'" in err

@@ -2,14 +2,16 @@
 would otherwise run silently or for minutes, each a one-line :class:`SceneError` naming the file, the key, the
 value and the likely mistake.
 
-- an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure);
+- an absolute pressure below 1 kPa (a pressure in bar or MPa, or a gauge pressure), or above 10 GPa (a pressure in
+  Pa in an mm-t-s or mm-kg-ms scene);
 - a gas temperature below 150 K (a temperature in °C) or above 10,000 K;
 - an exchange or inflator orifice area larger than twice its cavity's mesh surface, or (a cavity given by its
   volume) a thousand times the surface of a sphere of that volume (an area in mm² or cm²);
-- a cavity volume above 100 m³; or of 1 m³ or more whose inflators add less than 0.1 % of the gas it holds, or
-  that only vents and whose vents would take more than 1000 times ``time.end`` to relieve it (litres or mm³);
+- a cavity volume above 100 m³, or one whose run would change less than 0.3 % of its gas (its inflator tables'
+  mass and its vents' time constant: :mod:`cases.scene.plausible_volume`) (litres or mm³);
 - a mesh, a sphere, a box or a leakage box wider than 50 m, a cavity mesh enclosing more than 100 m³, a contact
-  tolerance above 1 m (millimetres).
+  tolerance above 1 m (millimetres);
+- a hydraulic cavity's bulk modulus outside 1e6 to 1e12 Pa or density outside 10 to 1e5 kg/m³ (another unit).
 
 ``[units] check = false`` turns them off; ``[units] unchecked = ["cavity[0].pressure"]`` exempts keys.
 """
@@ -20,19 +22,19 @@ import math
 from cavity.tables import Table
 
 from cases.scene.errors import SceneError
+from cases.scene.plausible_volume import MIN_RESPONSE, check_responses
 from cases.scene.unit_systems import SYSTEMS
 
-__all__ = ["check_plausible", "gas_temperatures", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT", "MIN_INFLATED"]
+__all__ = ["check_plausible", "gas_temperatures", "MIN_PRESSURE", "MIN_TEMPERATURE", "MAX_VOLUME", "MAX_EXTENT",
+           "MIN_RESPONSE"]
 
 #: Lowest absolute pressure [Pa], gas temperature [K], largest cavity volume [m^3] and mesh or body extent [m]
-#: a scene may give without an explicit override; least share of a cavity's gas its inflators must add [-].
-MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT, MIN_INFLATED = 1e3, 150.0, 100.0, 50.0, 1e-3
+#: a scene may give without an explicit override.
+MIN_PRESSURE, MIN_TEMPERATURE, MAX_VOLUME, MAX_EXTENT = 1e3, 150.0, 100.0, 50.0
 MAX_TOLERANCE = 1.0
-#: Most vent time constants in time.end of a cavity that only vents (the library's scenes: 12 at most).
-MAX_VENT_TIMES = 1e3
-#: Cavities of at least this volume [m^3] are checked against their inflators and vents (a short preview of a
-#: small vessel is not a mistake).
-MIN_VENTED_VOLUME = 1.0
+#: Highest absolute pressure [Pa] without override: 10 GPa, over ten times a hydraulic system's (700 MPa); the SI
+#: value of a pressure written in Pa in an mm-t-s scene is a million times it (1 bar: 1e11 Pa).
+MAX_PRESSURE = 1e10
 #: Surface of a sphere of volume V is SPHERE·V^(2/3), the least surface that can enclose V.
 SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
 #: An area may be at most this many times its cavity's mesh surface, or the surface of a sphere of its volume (a
@@ -40,7 +42,6 @@ SPHERE = (36.0 * math.pi) ** (1.0 / 3.0)
 MESH_AREA_FACTOR, SPHERE_AREA_FACTOR = 2.0, 1000.0
 #: Highest gas temperature [K] and lowest molar mass [kg/mol] (atomic hydrogen: 1.008e-3) taken without override.
 MAX_TEMPERATURE, MIN_MOLAR_MASS = 1e4, 1e-3
-_R_AIR = 287.05  # J/(kg K), for the order of magnitude of a cavity's gas mass
 
 
 class _Checker:
@@ -70,9 +71,10 @@ def check_plausible(scene, path) -> None:
     _temperatures(c)
     volumes = _volumes(c)
     _areas(c, volumes)
-    _inflated(c, volumes)
+    check_responses(c, volumes, _integral)
     _lengths(c)
     _coefficients(c)
+    _liquids(c)
 
 
 def _pressures(c: _Checker) -> None:
@@ -83,6 +85,12 @@ def _pressures(c: _Checker) -> None:
             c.fail(where, f"{c.given(p, (-1, 1, -2), 'Pa')} is below 1 kPa absolute: a pressure in bar ({p:g} bar = "
                           f"{p * 1e5:.6g} Pa) or MPa ({p * 1e6:.6g} Pa), or a gauge pressure? Pressures are absolute "
                           "[Pa]")
+        if p > MAX_PRESSURE:
+            unit = {"mm-t-s": "MPa", "mm-kg-ms": "GPa"}.get(c.system.name)
+            why = (f"a pressure in Pa in a {c.system.name} scene, whose pressures are in {unit}?" if unit else
+                   "a pressure in a unit smaller than Pa, or a typo?")
+            c.fail(where, f"{c.given(p, (-1, 1, -2), 'Pa')} is above {MAX_PRESSURE:g} Pa, more than any gas or liquid "
+                          f"here holds: {why}")
 
 
 def gas_temperatures(scene) -> list:
@@ -172,46 +180,6 @@ def _areas(c: _Checker, volumes: list) -> None:
                           "in m^2")
 
 
-def _inflated(c: _Checker, volumes: list) -> None:
-    """A cavity of MIN_VENTED_VOLUME or more filled by inflators whose whole gas would not change its pressure, or
-    vented orders of magnitude too slowly for time.end: its volume is orders too large."""
-    end = c.scene.time.end
-    for i, cav in enumerate(c.scene.cavity):
-        where, v, _ = volumes[i]
-        if cav.fluid != "gas" or not v or v < MIN_VENTED_VOLUME:
-            continue  # a short preview of a small cavity is not a mistake
-        if not cav.inflator:
-            _vented(c, cav, where, v)
-            continue
-        added = 0.0
-        for inf in cav.inflator:
-            if inf.type != "mass_temperature" or inf.mass_flow is None:
-                added = math.inf  # the other types' mass is not known before the run
-                break
-            last = inf.mass_flow.x[-1] if isinstance(inf.mass_flow, Table) else 0.0
-            added += inf.scale * _integral(inf.mass_flow, max(end - inf.start, last))
-        held = cav.pressure * v / (_R_AIR * cav.temperature)
-        if added < MIN_INFLATED * held:
-            c.fail(where, f"{v:.6g} m^3 holds about {held:.3g} kg of gas and its inflators add {added:.3g} kg in all "
-                          f"({added / held:.2%}): a volume in litres ({v:g} L = {v * 1e-3:.6g} m^3) or "
-                          "mm^3? Volumes are in m^3")
-
-
-def _vented(c: _Checker, cav, where: str, v: float) -> None:
-    """A cavity that only vents, whose vents would take more than MAX_VENT_TIMES·time.end to relieve it (time
-    constant V/(Cd·A·c₀), Cd 0.6, air's speed of sound): its volume is orders too large for the scene."""
-    area = sum(e.effective_area or e.area for e in c.scene.exchange if cav.name in (e.from_, e.to)
-               and not e.leakage_table and e.law in ("orifice", "fabric_leakage"))
-    if not area or any(cav.name == e.from_ and (e.pop_pressure or e.open_time)
-                                                for e in c.scene.exchange):
-        return
-    tau = v / (0.6 * area * math.sqrt(1.4 * _R_AIR * cav.temperature))
-    if tau > MAX_VENT_TIMES * c.scene.time.end:
-        c.fail(where, f"{v:.6g} m^3 would take about {tau:.3g} s to vent through {area:.3g} m^2, "
-                      f"{tau / c.scene.time.end:.3g} times time.end: a volume in litres ({v:g} L = {v * 1e-3:.6g} "
-                      "m^3) or mm^3? Volumes are in m^3")
-
-
 def _integral(rate, span: float) -> float:
     """∫₀^span of a number or a Table (held beyond its ends) [kg]."""
     if not isinstance(rate, Table):
@@ -272,3 +240,31 @@ def _coefficients(c: _Checker) -> None:
         if isinstance(top, float) and top > MAX_CD:
             c.fail(f"exchange[{j}].discharge_coefficient", f"{top:.6g} is above {MAX_CD:g}: a discharge coefficient "
                                                            "is at most about 1 (the ideal flow)")
+
+
+#: Liquid bulk modulus [Pa] (oil with entrained air ~1e7, water 2.2e9, diamond 4.4e11) and density [kg/m^3]
+#: (liquid hydrogen 71, osmium 22,600) taken without override.
+MIN_BULK_MODULUS, MAX_BULK_MODULUS, MIN_DENSITY, MAX_DENSITY = 1e6, 1e12, 10.0, 1e5
+
+
+def _liquids(c: _Checker) -> None:
+    """A hydraulic cavity's bulk modulus and density within the bounds above (a value in another unit: in the SI
+    value of an mm-t-s scene, 2.2e9 written for water's bulk modulus is 2.2e15 Pa)."""
+    name = c.system.name
+    units = {"mm-t-s": ("MPa", "t/mm^3"), "mm-kg-ms": ("GPa", "kg/mm^3")}.get(name)
+    for i, cav in enumerate(c.scene.cavity):
+        if cav.fluid != "hydraulic":
+            continue
+        k, rho = cav.bulk_modulus, cav.density
+        if k and not MIN_BULK_MODULUS <= k <= MAX_BULK_MODULUS:
+            why = (f"a bulk modulus in Pa in a {name} scene, whose pressures are in {units[0]}?" if units else
+                   f"a bulk modulus in MPa or GPa ({k:g} GPa = {k * 1e9:.6g} Pa)?" if k < MIN_BULK_MODULUS else
+                   "a typo?")
+            c.fail(f"cavity[{i}].bulk_modulus", f"{c.given(k, (-1, 1, -2), 'Pa')} is outside {MIN_BULK_MODULUS:g} to "
+                                                f"{MAX_BULK_MODULUS:g} Pa (water: 2.2e9 Pa): {why}")
+        if rho and not MIN_DENSITY <= rho <= MAX_DENSITY:
+            why = (f"a density in kg/m^3 in a {name} scene, whose densities are in {units[1]}?" if units else
+                   f"a density in g/cm^3 ({rho:g} g/cm^3 = {rho * 1e3:.6g} kg/m^3)?" if rho < MIN_DENSITY else
+                   "a typo?")
+            c.fail(f"cavity[{i}].density", f"{c.given(rho, (-3, 1, 0), 'kg/m^3')} is outside {MIN_DENSITY:g} to "
+                                           f"{MAX_DENSITY:g} kg/m^3 (water: 1000): {why}")

@@ -3,10 +3,10 @@ mm-t-s or mm-kg-ms is converted to SI once, at load, by the factors of :mod:`cas
 importer's). Temperatures are absolute kelvin in every system and are not converted.
 
 Scalars and vectors are converted by the unit each key declares (``key(doc, unit)``); tables by their abscissa
-(time, or pressure for a Cd table of pressure) and ordinate; the CSV tables and single meshes a scene names are
-written converted into a private folder and the scene points at the copies. Files that are series (``.pvd``,
-``.xdmf``, ``.npz``, node CSVs, vertex trajectories) are not converted: a SceneError asks for SI ones (a d3plot
-has its own ``[fe_run] units``).
+(time, or pressure for a Cd table of pressure) and ordinate; the files a scene names (CSV tables, single meshes,
+mesh series and vertex trajectories (``.pvd``, ``.xdmf``, ``.npz``: times and coordinates), node CSVs (coordinates
+and areas)) are written converted into a private folder and the scene points at the copies
+(:mod:`cases.scene.units_files`). A d3plot has its own ``[fe_run] units``.
 """
 from __future__ import annotations
 
@@ -23,6 +23,7 @@ from cavity.tables import Table
 from cases.scene.errors import SceneError
 from cases.scene.schema import key, toml_name
 from cases.scene.unit_systems import SYSTEMS, exponents
+from cases.scene.units_files import scaled_nodes, scaled_series
 
 __all__ = ["UnitsSpec", "to_si", "UNIT_SYSTEMS"]
 
@@ -61,8 +62,8 @@ _FILES = {("CavitySpec", "mesh"): "mesh", ("BodySpec", "mesh"): "mesh", ("Exchan
           ("CavitySpec", "temperature_table"): ((0, 0, 1), (0, 0, 0)),
           ("BodySpec", "displacement_table"): ((0, 0, 1), (1, 0, 0)),
           ("BodySpec", "rotation_table"): ((0, 0, 1), (0, 0, 0))}
-_UNCONVERTED = {("CavitySpec", "mesh_series"), ("BodySpec", "mesh_series"), ("BodySpec", "vertex_trajectory"),
-                ("ExchangeSpec", "leakage_nodes")}
+_SERIES_KEYS = {("CavitySpec", "mesh_series"), ("BodySpec", "mesh_series"), ("BodySpec", "vertex_trajectory")}
+_NODES_KEYS = {("ExchangeSpec", "leakage_nodes")}
 _SERIES = (".pvd", ".xdmf", ".xmf", ".npz")
 _FLUX = {"mass_flux": (-2, 1, -1), "volume_flux": (1, 0, -1), "mass_rate_leakage": (-2, 1, -1),
          "volume_rate_leakage": (1, 0, -1)}
@@ -112,7 +113,7 @@ class _Converter:
             return self.spec(value, where)
         if isinstance(value, tuple) and value and all(is_dataclass(v) and not isinstance(v, Table) for v in value):
             return tuple(self.spec(v, f"{where}[{i}]") for i, v in enumerate(value))
-        if (cls, f.name) in _FILES or (cls, f.name) in _UNCONVERTED or f.name == "leakage_table":
+        if (cls, f.name) in _FILES or (cls, f.name) in _SERIES_KEYS | _NODES_KEYS or f.name == "leakage_table":
             return self.file(obj, cls, f.name, value, where)
         exps = _SPECIAL.get((cls, f.name)) or exponents(f.metadata.get("unit", "-"))
         if f.name == "flux":
@@ -146,11 +147,13 @@ class _Converter:
         kind = _FILES.get((cls, name))
         if name == "leakage_table":
             kind = ((-1, 1, -2), _FLUX.get(getattr(obj, "law", ""), (0, 0, 0)))
-        if kind is None or str(value).lower().endswith(_SERIES):
-            raise SceneError(self.path, where, f"{value!r} is not converted from [units] system = "
-                                               f"{self.system.name!r} (series and node files are read in SI): give "
-                                               "it in SI, or write the whole scene in SI")
         target = _folder() / f"{abs(hash((str(self.path), where, str(source)))):x}_{Path(value).name}"
+        if str(value).lower().endswith(_SERIES):
+            return str(scaled_series(source, target, self.system, self.path, where))
+        if (cls, name) in _SERIES_KEYS:
+            return value  # not a series format: the reader names the formats it takes
+        if (cls, name) in _NODES_KEYS:
+            return str(scaled_nodes(source, target, self.system, self.path, where))
         if kind == "mesh":
             _scaled_mesh(source, target.with_suffix(".ply"), self.system.length, self.path, where)
             return str(target.with_suffix(".ply"))

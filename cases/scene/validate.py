@@ -163,11 +163,16 @@ def _positive_values(value, path, where, what) -> None:
             raise SceneError(path, where, f"{row}; expected {what}")
 
 
+#: Smallest relative tolerance: 100 times the double machine epsilon (scipy's solve_ivp raises a smaller rtol to it).
+MIN_RTOL = 100 * 2.220446049250313e-16
+
+
 def _sanity(scene, path) -> None:
     """Ranges that involve one key but more than its sign."""
     s, t = scene.solver, scene.time
-    if not s.rtol < 1.0:
-        raise SceneError(path, "solver.rtol", f"expected a relative tolerance 0 < rtol < 1, got {s.rtol!r}")
+    if not MIN_RTOL <= s.rtol < 1.0:
+        raise SceneError(path, "solver.rtol", f"expected a relative tolerance {MIN_RTOL:.3g} <= rtol < 1 (100 times "
+                                              f"the machine epsilon: no step can be more accurate), got {s.rtol!r}")
     if not s.atol < 1.0:
         raise SceneError(path, "solver.atol", f"expected a fraction 0 <= atol < 1 of each unknown's scale, got "
                                               f"{s.atol!r}")
