@@ -5,8 +5,9 @@ machine code beside the sources (``__pycache__``), so the first ``ventsim run`` 
 Every scene runs on the same compiled engine, so these three compile all of it. It also writes the bytecode of
 ventsim's packages (``.pyc``, as ``pip install`` does for a regular install; an editable install writes it at the first
 import, unless ``PYTHONDONTWRITEBYTECODE`` is set): without it every run compiles its ~170 modules from source again,
-about 0.2 s of CPU. It prints each scene's measured wall and CPU time as it goes (``benchmarks/compile.py`` and ``benchmarks/install.py`` measure it in a fresh copy);
-with the cache filled, a few seconds."""
+about 0.2 s of CPU (measured with ``compile()`` over the modules the main job imports). It prints each scene's
+measured wall and CPU time as it goes (``benchmarks/compile.py`` and ``benchmarks/install.py`` measure it in a
+fresh copy); with the cache filled, a few seconds."""
 from __future__ import annotations
 
 import sys
