@@ -23,8 +23,7 @@ import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["SHIPPED", "coolprop_version", "fit_key", "lookup", "store", "user_cache_file", "user_cache_folder",
-           "write_json"]
+__all__ = ["SHIPPED", "coolprop_version", "fit_key", "lookup", "store", "user_cache_file", "write_json"]
 
 SHIPPED = Path(__file__).resolve().parent / "data" / "coolprop_fits.json"
 
@@ -49,22 +48,15 @@ def fit_key(fluid: str, t_range, width: float) -> str:
     return f"{fluid}|{span}|{float(width)!r}"
 
 
-def user_cache_folder() -> Path | None:
-    """ventsim's user cache folder (``$VENTSIM_CACHE_DIR``, else ``$XDG_CACHE_HOME/ventsim``, else
-    ``~/.cache/ventsim``), or None when switched off (``VENTSIM_CACHE_DIR`` empty)."""
+def user_cache_file() -> Path | None:
+    """This CoolProp version's cache file in the user cache folder, or None when switched off."""
     folder = os.environ.get("VENTSIM_CACHE_DIR")
     if folder == "":
         return None
     if folder is None:
         base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
         folder = str(Path(base) / "ventsim")
-    return Path(folder)
-
-
-def user_cache_file() -> Path | None:
-    """This CoolProp version's cache file in the user cache folder, or None when switched off."""
-    folder = user_cache_folder()
-    return None if folder is None else folder / f"coolprop_fits-{coolprop_version()}.json"
+    return Path(folder) / f"coolprop_fits-{coolprop_version()}.json"
 
 
 def _read(path: Path) -> dict:

@@ -11,8 +11,8 @@ A file holds the fit's arrays (``.npz``, nothing pickled) under the digest of ``
 :mod:`cases.model.wrapped_volume` with every ventsim module it imports (:func:`cavity.kernel_cache.stamp`, as for
 numba's cache): an edit of that code gives new names. float64 arrays round-trip exactly, so a fit read back equals
 a fresh one bit for bit. The folder is ``wrap_fits`` in the user cache folder (``$VENTSIM_CACHE_DIR``, else
-``$XDG_CACHE_HOME/ventsim``, else ``~/.cache/ventsim``; an empty ``VENTSIM_CACHE_DIR`` switches it off, see
-:mod:`cavity.species_fits`). A folder that cannot be written is skipped, a file that cannot be read is computed
+``$XDG_CACHE_HOME/ventsim``, else ``~/.cache/ventsim``; an empty ``VENTSIM_CACHE_DIR`` switches it off, as for
+the CoolProp fits of :mod:`cavity.species_fits`). A folder that cannot be written is skipped, a file that cannot be read is computed
 again, and only the :data:`MAX_FILES` newest files are kept.
 """
 from __future__ import annotations
@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from cavity.species_fits import user_cache_folder
+from cavity.species_fits import user_cache_file
 
 __all__ = ["MAX_FILES", "fit_file", "load_fit", "store_fit"]
 
@@ -37,9 +37,10 @@ def fit_file(key: str) -> Path | None:
     """The file of the fit ``key`` (a digest of the geometry), or None when the cache is switched off."""
     from cavity.kernel_cache import stamp
 
-    folder = user_cache_folder()
-    if folder is None:
+    species = user_cache_file()  # the CoolProp fits' file: its folder is the user cache folder
+    if species is None:
         return None
+    folder = species.parent
     code = stamp(Path(__file__).resolve().with_name("wrapped_volume.py"))
     return folder / "wrap_fits" / f"{hashlib.sha256(f'{code}|{key}'.encode()).hexdigest()}.npz"
 
