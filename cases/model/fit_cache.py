@@ -37,7 +37,10 @@ def fit_file(key: str) -> Path | None:
     """The file of the fit ``key`` (a digest of the geometry), or None when the cache is switched off."""
     from cavity.kernel_cache import stamp
 
-    species = user_cache_file()  # the CoolProp fits' file: its folder is the user cache folder
+    try:
+        species = user_cache_file()  # the CoolProp fits' file: its folder is the user cache folder
+    except (RuntimeError, KeyError):  # no home folder to put it in
+        return None
     if species is None:
         return None
     folder = species.parent
