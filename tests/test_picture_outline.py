@@ -3,7 +3,7 @@ projects on screen; an annotated picture carries the scene's label and the orien
 stays inside the figure.
 
 The body's outline is found without trusting the renderer's camera: the body's vertices are projected with the
-pinhole model of the camera position (VTK's vertical view angle, :data:`VIEW_ANGLE`), and the pixels of the
+pinhole model of the camera position (VTK's, with the vertical view angle :data:`VIEW_ANGLE`), and the pixels of the
 silhouette colour must appear only in the picture with the body, near the projected outline, and on all four sides
 of its projected bounding box.
 """
@@ -56,8 +56,11 @@ def scene(with_body=True, offset=(0.0, 0.0, 0.04)):
                  label="demo: exchange vent, p of cavity bag")
 
 
-def test_the_projection_matches_the_renderer():
-    """The oracle's projection agrees with VTK's world-to-display transform to a pixel."""
+def test_the_projection_matches_vtk():
+    """The oracle's projection and the renderer's (:class:`cases.results.raster.Camera`) agree with VTK's
+    world-to-display transform (what ParaView and pyvista show from the same camera) to a pixel."""
+    from cases.results.raster import Camera
+
     frame = scene()
     camera = camera_for(frame)
     plotter = pv.Plotter(off_screen=True, window_size=list(SIZE))
@@ -65,12 +68,13 @@ def test_the_projection_matches_the_renderer():
     plotter.camera.view_angle = VIEW_ANGLE
     renderer = plotter.renderer
     points = np.asarray(frame.bodies[0][0])[:20]
-    ours = project(points, camera, SIZE)
-    for point, (px, py) in zip(points, ours):
+    ours, renderers = project(points, camera, SIZE), Camera(camera, VIEW_ANGLE, SIZE).project(points)[:, :2]
+    for point, (px, py), (rx, ry) in zip(points, ours, renderers):
         renderer.SetWorldPoint(*point, 1.0)
         renderer.WorldToDisplay()
         dx, dy, _ = renderer.GetDisplayPoint()
         assert abs(dx - px) < 1.0 and abs((SIZE[1] - dy) - py) < 1.0
+        assert abs(dx - rx) < 1.0 and abs((SIZE[1] - dy) - ry) < 1.0
     plotter.close()
 
 

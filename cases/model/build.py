@@ -44,6 +44,7 @@ class Model:
     modelled: dict
     geometry: dict | None = None
     warnings: list = field(default_factory=list)  # messages of the VentsimWarnings raised validating and building
+    provenance: dict | None = None  # summary.json's "ventsim" entry, hashed once on the first run
 
 
 def build_model(scene: Scene) -> Model:

@@ -67,33 +67,28 @@ def write_summary(path: Path, summary: dict) -> None:
 
 
 def history_figure(columns: list, history: np.ndarray, title: str = "", overlay: dict | None = None):
-    """The history figure: pressure, temperature, mass flows (exchanges and inflators), exchange areas and, where
-    the scene has them, blocked fractions, body displacements and peak contact pressure against time, one panel
-    each (matplotlib, Agg); ``overlay`` {cavity: FePressure} draws an FE run's pressure dashed over ventsim's
-    (:mod:`cases.results.fe_pressure`); returns the ``Figure``."""
+    """The history figure as a matplotlib ``Figure`` (Agg), for interactive use: the panels of
+    :func:`cases.results.history_plot.history_panels` (pressure, temperature, mass flows, exchange areas and, where
+    the scene has them, blocked fractions, body displacements and peak contact pressure against time); ``overlay``
+    {cavity: FePressure} draws an FE run's pressure dashed over ventsim's (:mod:`cases.results.fe_pressure`).
+    ``history.png`` is drawn without matplotlib (:func:`plot_history`)."""
     import matplotlib
 
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
     from matplotlib.ticker import MaxNLocator
 
-    t = history[:, 0]
-    panels = [("pressure [Pa]", "pressure [kPa]", 1e-3), ("temperature [K]", "temperature [K]", 1.0),
-              ("mass_flow [kg/s]", "mass flow [kg/s]", 1.0), (".area [m^2]", "exchange area [mm^2]", 1e6)]
-    optional = [(".blocked_fraction [-]", "blocked fraction [-]", 1.0),
-                (".displacement [m]", "body displacement [mm]", 1e3), ("max_cpress [Pa]", "max CPRESS [kPa]", 1e-3)]
-    panels = [p for p in panels if any(c.endswith(p[0]) for c in columns)]
-    panels += [p for p in optional if any(c.endswith(p[0]) and np.any(history[:, i])  # scenes with bodies, contact
-                                          for i, c in enumerate(columns))]
+    from cases.results.history_plot import history_panels
+
+    panels = history_panels(columns, history, overlay)
     fig = Figure(figsize=(8, 2.3 * len(panels)))
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
-    for ax, (suffix, label, factor) in zip(axes, panels):
-        for i, c in enumerate(columns):
-            if c.endswith(suffix) and not c.endswith("gauge_pressure [Pa]"):
-                ax.plot(t * 1e3, history[:, i] * factor, label=c.split(" [")[0])
-        if suffix == "pressure [Pa]":
-            for name, fe in (overlay or {}).items():
-                ax.plot(fe.times * 1e3, fe.pressures * factor, "--", color="k", lw=1, label=f"{name} (FE run)")
+    for ax, (label, series) in zip(axes, panels):
+        for name, t, values, dashed in series:
+            if dashed:
+                ax.plot(t, values, "--", color="k", lw=1, label=name)
+            else:
+                ax.plot(t, values, label=name)
         ax.set_ylabel(label)
         ax.yaxis.set_major_locator(MaxNLocator(5))  # fewer ticks: each costs a text layout when drawn
         ax.grid(True, alpha=0.3)
@@ -108,10 +103,13 @@ def history_figure(columns: list, history: np.ndarray, title: str = "", overlay:
 
 
 def plot_history(path: Path, columns: list, history: np.ndarray, title: str = "", overlay=None) -> None:
-    """:func:`history_figure` written to the PNG ``path``."""
-    fig = history_figure(columns, history, title, overlay)
+    """The history figure written to the PNG ``path`` (:func:`cases.results.history_plot.draw_history`: Pillow,
+    the panels of :func:`history_figure` without importing matplotlib)."""
+    from cases.results.history_plot import draw_history
+
+    image = draw_history(columns, history, title, overlay)
     with atomic_path(path) as tmp:  # zlib level 1: a fifth of the default's time for a slightly larger file
-        fig.savefig(tmp, dpi=100, format="png", pil_kwargs={"compress_level": 1})
+        image.save(tmp, format="PNG", compress_level=1)
 
 
 def write_results(results, out: Path) -> dict:

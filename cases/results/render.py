@@ -8,7 +8,7 @@ What is drawn (see ``docs/rendering.md``)
   edges in dark grey;
 - active blockage nodes as black dots;
 - blocking bodies translucent green (:data:`BODY_OPACITY`, front faces only, so one layer is blended) with their
-  silhouette as seen from the camera drawn opaque in dark green (:data:`SILHOUETTE_RGB`);
+  silhouette as seen from the camera drawn opaque in dark green (:data:`SILHOUETTE_RGB`), antialiased;
 - optional context surfaces (e.g. the cavity) light grey, opaque or translucent;
 - annotated (``scalar_bar=True``, as the pictures of a run are): the title (the frame's ``label``: scene,
   exchange and cavity; then ``t = 12.50 ms, p = 135.2 kPa``), orientation axes, a one-line legend, a scale bar
@@ -23,9 +23,8 @@ The camera is fixed: :func:`camera_for` frames the union of the bounds of the le
 in one frame (the first one for an animation; context surfaces only on request), looking at the leakage
 surface from the side of the bodies, 35 degrees off its mean normal, so that an animation does not jump.
 
-Rendering is off screen always; pyvista is imported inside the functions (rendering is optional). The
-VTK backend uses EGL unless ``VTK_DEFAULT_OPENGL_WINDOW`` is already set. GIFs are assembled with Pillow
-(a dependency of matplotlib), because pyvista's own GIF writer needs imageio, which ventsim does not use.
+The pictures are drawn off screen by ventsim's own renderer (:mod:`cases.results.raster`, NumPy and Pillow, no
+OpenGL and no pyvista; see :mod:`cases.results.render_plotter`). GIFs are assembled with Pillow.
 """
 from __future__ import annotations
 

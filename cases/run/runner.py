@@ -135,11 +135,13 @@ def _run(model: Model, options, progress: bool) -> Results:
     history = history_rows(model, traj, model.output_times, start + options.max_wall)
     net.restore(traj.modes[-1])
     y1 = traj(t_end)
+    if model.provenance is None:  # the scene's hash costs more than a small scene's run: once per model
+        model.provenance = provenance(model.scene)
     summary = {"title": model.scene.title, "scene": str(model.scene.path), "end time [s]": t_end,
                "cavities": cavity_summary(model, traj, y1), "mass balance": mass_balance(model, y0, y1),
                "solver": {"method": model.options.method, "rtol": model.options.rtol, **traj.stats,
                           "wall time [s]": wall, "event log": [[t, label] for t, label in traj.events]},
-               "modelled": model.modelled, "ventsim": provenance(model.scene)}
+               "modelled": model.modelled, "ventsim": dict(model.provenance)}
     if model.geometry is not None:
         summary["blockage"] = blockage_summary(model, traj, history)
         if getattr(net, "body", None) is not None:

@@ -22,18 +22,26 @@ from .layout import (UNLOCKED, AreaKind, CavityInt, ExchangeFloat, ExchangeInt, 
 
 __all__ = ["Engine"]
 
+_SOLVE_READY = False  # whether this process has called the compiled solver (compiled or loaded it)
+
 
 class Engine:
     """A network lowered onto the engine (:func:`exchange.engine.lower.lower`).
 
     ``model`` the numba Model, ``arrays`` its arrays on the Python side (:class:`~exchange.engine.layout.ModelArrays`),
     ``labels`` each switch's label, ``T_initial`` the cavities' initial temperatures [K], ``network`` the network,
-    ``host`` its id in :mod:`exchange.engine.hosted` (−1: no hosted parts)."""
+    ``host`` its id in :mod:`exchange.engine.hosted` (−1: no hosted parts); ``pop_vents`` and ``by_body``
+    per exchange whether it is a pop vent and whether its area follows the dynamic body."""
 
     def __init__(self, model, arrays, labels, T_initial, network, host: int = -1):
         self.model, self.arrays, self.labels, self.T_initial = model, arrays, labels, T_initial
         self.network, self.host = network, host
         self.modes, self._run_modes = {}, []  # modes: each distinct DiscreteState once
+        # fixed by the lowering, found once: the switches arm() tests, each exchange's pop-vent and by-body flags
+        kinds, ei = arrays.switch_kind, arrays.exchange_int
+        self._armable = np.flatnonzero((kinds == SwitchKind.POP) | (kinds == SwitchKind.CLOSE)).tolist()
+        self.pop_vents = (ei[:, ExchangeInt.POP] == 1).tolist()
+        self.by_body = [int(k) in (AreaKind.STEPS_OF_BODY, AreaKind.SAMPLED_OF_BODY) for k in ei[:, ExchangeInt.AREA]]
 
     @property
     def kinds(self) -> np.ndarray:
@@ -46,7 +54,9 @@ class Engine:
         :meth:`segment_mode`."""
         from .solver import solve
 
-        _announce_compilation(solve)
+        global _SOLVE_READY
+        if not _SOLVE_READY:
+            _announce_compilation(solve)
         a, net = self.arrays, self.network
         a.temperature_guess[:] = self.T_initial  # Newton's first guesses, as Network.reset()
         if self.host >= 0:
@@ -56,6 +66,7 @@ class Engine:
         atol = np.array(np.broadcast_to(np.asarray(atol, dtype=float), y0.shape))  # writable: one specialisation
         out = solve(self.model, y0, float(t0), np.array(stops, dtype=float), float(rtol), atol, float(max_step),
                     int(max_steps), float(near), float(deadline))
+        _SOLVE_READY = True
         self.unlock_pieces()
         warn_clamped(net, a.inflator_int)
         segs = out[4]
@@ -84,13 +95,15 @@ class Engine:
         pops) now, as if its pressure had just crossed it, and every exchange whose downstream cavity is already at
         its close pressure closes; the network takes the new state. Returns their switch labels (for the event
         log)."""
+        if not self._armable:
+            return []
         from .modes import on_event
         from .switches import switches
 
         self.load_discrete_state()
         a, labels, value = self.arrays, [], np.empty(1)
         y0 = np.ascontiguousarray(y0, dtype=float)
-        for q in np.flatnonzero((a.switch_kind == SwitchKind.POP) | (a.switch_kind == SwitchKind.CLOSE)):
+        for q in self._armable:
             j, close = int(a.switch_target[q]), a.switch_kind[q] == SwitchKind.CLOSE
             armed = OpenState.OPEN if close else OpenState.SHUT
             if a.open_state[j] != armed or not math.isnan(a.hold_start[j]):

@@ -6,7 +6,7 @@ import numpy as np
 
 from exchange.network.discrete_state import DiscreteState
 
-from .layout import AreaKind, ExchangeFloat, ExchangeInt, SegmentColumn, flags_of, segment_blocks
+from .layout import ExchangeFloat, ExchangeInt, SegmentColumn, flags_of, segment_blocks
 
 __all__ = ["modes_of"]
 
@@ -14,10 +14,9 @@ __all__ = ["modes_of"]
 def modes_of(engine, segs) -> list:
     """The network's DiscreteState of each row of an engine's segment table (:func:`exchange.engine.modes.
     record_segment`), one object per distinct state (kept in ``engine.modes``)."""
-    a, ne = engine.arrays, len(engine.network.exchanges)
+    ne = len(engine.network.exchanges)
     opened, hold, interval, held, _ = (int(c) for c in segment_blocks(ne))
-    pop_vents = (a.exchange_int[:, ExchangeInt.POP] == 1).tolist()
-    by_body = np.isin(a.exchange_int[:, ExchangeInt.AREA], (AreaKind.STEPS_OF_BODY, AreaKind.SAMPLED_OF_BODY)).tolist()
+    pop_vents, by_body = engine.pop_vents, engine.by_body
     bits_c, t_c = int(SegmentColumn.EQUALISED), int(SegmentColumn.T_MIN)
     out = []
     for row in np.asarray(segs).tolist():
