@@ -154,6 +154,7 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """The command; ``argv`` None: the process's own command line (then the process ends right after)."""
     args = parser().parse_args(argv)
     _configure_logging(args)
     try:
@@ -164,6 +165,19 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("ventsim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    finally:
+        if argv is None:
+            _before_exit()
+
+
+def _before_exit() -> None:
+    """Move every object to the garbage collector's permanent generation, so that the interpreter's shutdown does
+    not traverse the ~200,000 objects numba, scipy and trimesh leave (0.4-0.5 s of CPU after the main job). Only
+    when ventsim is the program: its outputs are written and closed by then, and atexit handlers still run; a
+    Python caller of ``main(argv)`` keeps its collector as it was."""
+    import gc
+
+    gc.freeze()
 
 
 if __name__ == "__main__":

@@ -106,3 +106,15 @@ def test_warmup_writes_the_packages_bytecode(tmp_path):
         f.write_text("VALUE = 1\n")
     compile_bytecode(tmp_path)
     assert all(Path(importlib.util.cache_from_source(f)).is_file() for f in sources)
+
+
+def test_the_program_freezes_the_heap_before_exit_a_python_caller_does_not(tmp_path):
+    """``ventsim`` as the program leaves its objects to the OS at exit (gc.freeze); main(argv) from Python does not."""
+    out = tmp_path / "out"
+    args = ["run", "cases/verification/blowdown_choked.toml", "--out", str(out), "--quiet"]
+    probe = ("import gc, sys\nfrom cases.cli import main\n"
+             f"sys.argv = ['ventsim'] + {args!r}\nmain()\nprint(gc.get_freeze_count() > 0)\n"
+             f"gc.unfreeze()\nmain({args!r})\nprint(gc.get_freeze_count() > 0)")
+    done = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True)
+    assert done.stdout.split() == ["True", "False"]
+    assert (out / "history.csv").is_file()
