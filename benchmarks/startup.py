@@ -5,7 +5,8 @@ inflates the wall time but hardly the CPU time):
 
 1. import time of ``import ventsim`` (CPU and wall, median of ``--runs`` runs, 3 by default);
 2. the main job of the README, ``ventsim run cases/airbag_impactor_dynamic.toml``, without and with ``--render``
-   (CPU, median of ``--runs`` runs each after one run that warms the caches; the rendering cost is the difference,
+   (CPU, median of ``--runs`` runs each after one run that warms the caches, and with the package's bytecode written
+   as ``python -m cases.warmup`` writes it at install; the rendering cost is the difference,
    and the rendering phase alone as
    ``ventsim run --verbose`` reports it: the difference also holds the noise of two whole runs);
 3. the first run of a scene on the compiled path with an empty numba cache (``NUMBA_CACHE_DIR`` pointed at an
@@ -80,8 +81,10 @@ def library_rows() -> list:
 
 def main(argv) -> None:
     n = int(argv[argv.index("--runs") + 1]) if "--runs" in argv else 3
-    rows = []
-    rows.append(("import ventsim", *median(n, [sys.executable, "-c", "import ventsim"])))
+    from cases.warmup import compile_bytecode
+
+    compile_bytecode()  # as installing does: the runs below read .pyc files even under PYTHONDONTWRITEBYTECODE
+    rows = [("import ventsim", *median(n, [sys.executable, "-c", "import ventsim"]))]
     with tempfile.TemporaryDirectory() as out:
         child(ventsim("run", MAIN, "--out", out, "--quiet"))  # warm the numba and CoolProp caches
         plain = median(n, ventsim("run", MAIN, "--out", out, "--quiet"))

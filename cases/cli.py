@@ -154,8 +154,12 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """The command; ``argv`` None: the process's own command line (then the process ends right after)."""
     args = parser().parse_args(argv)
     _configure_logging(args)
+    program = argv is None
+    if program:
+        _freeze_heap()  # what the imports so far left (numba's above all) lives to the end
     try:
         return args.func(args)
     except SceneError as exc:
@@ -164,6 +168,20 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("ventsim: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    finally:
+        if program:
+            _freeze_heap()
+
+
+def _freeze_heap() -> None:
+    """Move every object to the garbage collector's permanent generation (``gc.freeze``): the collections during
+    the run and the interpreter's shutdown then no longer traverse the ~200,000 objects numba, scipy and trimesh
+    leave (0.08 s of CPU during the main job, 0.3-0.5 s at its exit). Only when ventsim is the program: objects
+    made later are collected as usual, the outputs are written and closed before the second call, and atexit
+    handlers still run; a Python caller of ``main(argv)`` keeps its collector as it was."""
+    import gc
+
+    gc.freeze()
 
 
 if __name__ == "__main__":

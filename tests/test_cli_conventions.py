@@ -91,3 +91,30 @@ def test_the_install_warm_up_covers_the_compiled_path_and_the_blockage_kernels()
     assert run(models[0]).trajectory.path == "compiled"
     assert models[1].geometry is not None  # a blocked leakage surface: the blockage kernels
     assert models[2].network.areas[0].track.moving is not None  # a vent on a mesh series: the moving-area law
+
+
+def test_warmup_writes_the_packages_bytecode(tmp_path):
+    """A run reads bytecode instead of compiling every module from source, even under PYTHONDONTWRITEBYTECODE."""
+    import importlib.util
+
+    from cases.warmup import compile_bytecode
+
+    sources = [tmp_path / "cases" / "__init__.py", tmp_path / "cases" / "model" / "build.py",
+               tmp_path / "cavity" / "x.py"]
+    for f in sources:
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_text("VALUE = 1\n")
+    compile_bytecode(tmp_path)
+    assert all(Path(importlib.util.cache_from_source(f)).is_file() for f in sources)
+
+
+def test_the_program_freezes_the_heap_before_exit_a_python_caller_does_not(tmp_path):
+    """``ventsim`` as the program leaves its objects to the OS at exit (gc.freeze); main(argv) from Python does not."""
+    out = tmp_path / "out"
+    args = ["run", "cases/verification/blowdown_choked.toml", "--out", str(out), "--quiet"]
+    probe = ("import gc, sys\nfrom cases.cli import main\n"
+             f"sys.argv = ['ventsim'] + {args!r}\nmain()\nprint(gc.get_freeze_count() > 0)\n"
+             f"gc.unfreeze()\nmain({args!r})\nprint(gc.get_freeze_count() > 0)")
+    done = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True)
+    assert done.stdout.split() == ["True", "False"]
+    assert (out / "history.csv").is_file()

@@ -1,5 +1,6 @@
 """What a process loads: ``import ventsim`` nothing heavy, a compiled run no scipy.integrate, no plotting or
-distributed package, until a picture, a plot or a sweep asks for it; the DOP853 tableau read without
+distributed package, until a picture, a plot or a sweep asks for it (and a scene without seal or mesh no
+scipy.optimize, scipy.sparse or trimesh); the DOP853 tableau read without
 scipy.integrate is scipy's."""
 import subprocess
 import sys
@@ -30,8 +31,21 @@ def test_a_compiled_run_loads_no_integrator_plotting_or_cluster_package():
     code = ("from cases.run.runner import run_scene\n"
             "r = run_scene('cases/verification/blowdown_choked.toml')\n"
             "assert r.summary['solver']['path'] == 'compiled'")
-    found = loaded(code, ["scipy.integrate", "matplotlib", "pyvista", "dask", "distributed", "pandas"])
+    found = loaded(code, ["scipy.integrate", "matplotlib", "pyvista", "dask", "distributed", "pandas",
+                          "scipy.optimize", "scipy.sparse", "trimesh", "networkx"])  # no seal, no mesh
     assert not any(found.values()), found
+
+
+def test_the_main_job_up_to_its_history_and_summary_draws_nothing(tmp_path):
+    """The README's main job built, solved and written (history.csv, summary.json) without the plot or pictures."""
+    code = ("from cases.run.runner import run_scene\n"
+            "from cases.results.output import write_history, write_summary\n"
+            "r = run_scene('cases/airbag_impactor_dynamic.toml')\n"
+            f"write_history({str(tmp_path / 'history.csv')!r}, r.columns, r.history)\n"
+            f"write_summary({str(tmp_path / 'summary.json')!r}, r.summary)")
+    found = loaded(code, ["matplotlib", "pyvista", "vtk", "scipy.integrate", "pandas", "dask"])
+    assert not any(found.values()), found
+    assert (tmp_path / "history.csv").is_file() and (tmp_path / "summary.json").is_file()
 
 
 def test_the_tableau_is_scipys():

@@ -10,7 +10,6 @@ import numpy as np
 
 from cases.scene.errors import SceneError
 from exchange.contact.laws import HARD, SeatLaw
-from exchange.seal.setup import seal_law
 
 __all__ = ["SealModel", "finish_seals", "seal_models"]
 
@@ -41,6 +40,8 @@ def _edge(scene, where, key, value):
 def finish_seals(scene, network, geo) -> None:
     """Replace each seal exchange's law by the law with its conductance curve; keeps the seals' :class:`SealModel`
     in ``geo["seals"]``. Raises SceneError naming the exchange when the seal has no flange or cannot be built."""
+    from exchange.seal.setup import seal_law  # here: its film solver imports scipy.optimize and scipy.sparse
+
     seals = []
     contact = getattr(network, "contact", None)
     if geo is None:

@@ -95,20 +95,28 @@ def _neighbours(normals, offsets, faces, face_plane):
         hull = ConvexHull(np.column_stack([normals, 1.0 + 2.0 * offsets]))
         simplices = hull.simplices[hull.equations[:, 3] < 0.0]  # the lower hull: the regular triangulation
         pairs = [np.column_stack([simplices[:, i], simplices[:, j]]) for i in range(4) for j in range(4) if i != j]
-        by_vertex = np.column_stack([faces.ravel(), np.repeat(face_plane, 3)])
-        order = np.argsort(by_vertex[:, 0], kind="stable")
-        by_vertex = by_vertex[order]
-        starts = np.flatnonzero(np.r_[True, by_vertex[1:, 0] != by_vertex[:-1, 0]])
-        counts = np.diff(np.r_[starts, len(by_vertex)])
-        k = int(counts.max())
-        for a in range(k):
-            for b in range(k):
-                ok = (counts > max(a, b)) & (a != b)
-                pairs.append(np.column_stack([by_vertex[starts[ok] + a, 1], by_vertex[starts[ok] + b, 1]]))
-        pairs = np.unique(np.concatenate(pairs), axis=0)
+        pairs.append(_vertex_pairs(faces, face_plane))
+        pairs = np.concatenate(pairs).astype(np.int64)
+        key = np.unique(pairs[:, 0] * P + pairs[:, 1])  # sorted as the pairs (i, j) are, each once
+        pairs = np.column_stack([key // P, key % P])
         pairs = pairs[pairs[:, 0] != pairs[:, 1]]
     ptr = np.searchsorted(pairs[:, 0], np.arange(P + 1)).astype(np.int64)
     return ptr, np.ascontiguousarray(pairs[:, 1], dtype=np.int64)
+
+
+def _vertex_pairs(faces, face_plane) -> np.ndarray:
+    """(plane, plane) of every ordered pair of faces that share a vertex (with repeats), (m, 2)."""
+    vertex, plane = np.ravel(faces), np.repeat(face_plane, 3)
+    order = np.argsort(vertex, kind="stable")
+    vertex, plane = vertex[order], plane[order]
+    starts = np.flatnonzero(np.r_[True, vertex[1:] != vertex[:-1]])
+    counts = np.diff(np.r_[starts, len(vertex)])
+    group = np.repeat(np.arange(len(starts)), counts)  # each entry's vertex group
+    partners = counts[group]
+    left = np.repeat(np.arange(len(vertex)), partners)  # each entry once per entry of its group
+    within = np.arange(len(left)) - np.repeat(np.cumsum(partners) - partners, partners)
+    right = starts[group[left]] + within
+    return np.column_stack([plane[left], plane[right]])
 
 
 def node_pieces(planes: ConvexPlanes, points, axis, lo: float, hi: float):

@@ -150,6 +150,7 @@ def wrapped_volume(mesh, wrapper: Wrapper, lo: float, hi: float, theta_of, theta
 
 def _translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints, knots_in_time):
     """The exact-and-fitted WrappedVolume of one convex body in pure translation, else None."""
+    from cases.model.fit_cache import load_fit, store_fit
     from cases.model.wrap_exact import exact_wrap
     from cases.model.wrap_fit import fit_wrap, in_time
     from cases.model.wrap_pieces import WalkError, convex_planes
@@ -170,7 +171,8 @@ def _translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints
     span = max(s_hi - s_lo, 1e-9 * max(float(np.linalg.norm(body.mesh.extents)), 1e-3))
     s_hi = s_lo + span
     key = _rigid_key(body, np.array([s_lo, s_hi]), np.asarray(body.axis, dtype=float), x0, faces)
-    found = _FITS.get(key)
+    stored = f"{key}|{FIT_TOLERANCE!r}|{RING!r}|{JUMP_WIDTH!r}"  # on disk: the fit's settings too
+    found = _FITS.get(key) or load_fit(stored)
     if found is None:
         planes = convex_planes(body.mesh.vertices, body.mesh.faces)
         if planes is None:
@@ -182,6 +184,8 @@ def _translating_convex(mesh, wrapper, lo, hi, theta_of, theta_rate, breakpoints
         v0 = mesh_volume(x0, faces)
         width = JUMP_WIDTH * float(body.mesh.edges_unique_length.mean())
         found = (fit_wrap(exact, FIT_TOLERANCE * abs(v0), RING * _peak_slope(exact), width), v0)
+        store_fit(stored, *found)
+    if key not in _FITS:
         _FITS[key] = found
         while len(_FITS) > 8:
             del _FITS[next(iter(_FITS))]
@@ -202,7 +206,7 @@ def _peak_slope(exact) -> float:
 #: next facet of the body), relative to the body's mean edge length.
 FIT_TOLERANCE, RING, JUMP_WIDTH = 1e-7, 1e-6, 1.0
 #: Fits (and the cavity's V0) keyed by the digest of the meshes, the axis and the range of s: a sweep's variants
-#: that leave the geometry alone reuse them.
+#: that leave the geometry alone reuse them; on disk too, for the next process (:mod:`cases.model.fit_cache`).
 _FITS: dict = {}
 #: The exact path for one convex body in translation (False: the sampled spline, for comparisons).
 EXACT_TRANSLATION = True

@@ -51,8 +51,9 @@ def _facts(path: str, mtime_ns: int, size: int) -> dict:
     facts["extent"] = float(np.linalg.norm(np.ptp(used, axis=0)))
     facts["box"] = (used.min(axis=0).tolist(), used.max(axis=0).tolist())
     labels = trimesh.graph.connected_component_labels(mesh.face_adjacency, node_count=len(faces))
-    pairs = np.unique(np.column_stack([faces.ravel(), np.repeat(labels, 3)]), axis=0)
-    shared = np.flatnonzero(np.bincount(pairs[:, 0]) > 1)
+    shells = int(labels.max()) + 1
+    pairs = np.unique(faces.ravel() * shells + np.repeat(labels, 3))  # (vertex, shell) pairs, each once
+    shared = np.flatnonzero(np.bincount(pairs // shells) > 1)
     facts["bowtie"] = int(shared[0]) if shared.size else None
     tri = vertices[faces]
     signed = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])) / 6.0
