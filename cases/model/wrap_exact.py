@@ -150,10 +150,14 @@ def _events(faces, touched, x0, ptr, s0, s1, u, w):
             if m == cap:
                 cap *= 2
                 pos2, delta2 = np.empty(cap), np.empty((cap, 4))
-                pos2[:m], delta2[:m] = pos[:m], delta[:m]
+                for i in range(m):  # element loops: an array-to-slice copy costs numba ~2 s to compile
+                    pos2[i] = pos[i]
+                    for r in range(4):
+                        delta2[i, r] = delta[i, r]
                 pos, delta = pos2, delta2
             pos[m] = bp[j]
-            delta[m] = cur - prev
+            for r in range(4):
+                delta[m, r] = cur[r] - prev[r]
+                prev[r] = cur[r]
             m += 1
-            prev[:] = cur
     return pos[:m], delta[:m]

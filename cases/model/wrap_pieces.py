@@ -211,12 +211,14 @@ def _argmax(x, normals, offsets):
 @njit(cache=True)
 def _grow(a, cap):
     out = np.empty(cap, a.dtype)
-    out[:len(a)] = a
+    for i in range(len(a)):  # not out[:len(a)] = a: that slice copy costs numba ~2 s to compile
+        out[i] = a[i]
     return out
 
 
 @njit(cache=True)
 def _growf(a, cap):
     out = np.empty(cap)
-    out[:len(a)] = a
+    for i in range(len(a)):
+        out[i] = a[i]
     return out

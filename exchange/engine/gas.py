@@ -155,3 +155,11 @@ def states(M, t, y):
         else:
             ok = _gas_state(M, i, t, y) and ok
     return ok
+
+
+@njit(cache=True)
+def reset_temperature_guesses(M):
+    """Newton's first guesses of the cavities' temperatures: their initial temperatures (a run's or a read-back's
+    start). Element by element: numba compiles a slice copy's shape-error path for seconds."""
+    for c in range(M.temperature_guess.size):
+        M.temperature_guess[c] = M.cavity_float[c, CavityFloat.T0]

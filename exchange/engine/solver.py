@@ -48,7 +48,9 @@ def _grow(buf, need):
     if need <= buf.shape[0]:
         return buf
     new = np.empty((max(need, 2 * buf.shape[0]), buf.shape[1]))
-    new[:buf.shape[0]] = buf
+    for i in range(buf.shape[0]):  # element loops: numba compiles an array-to-slice copy's error path for seconds
+        for j in range(buf.shape[1]):
+            new[i, j] = buf[i, j]
     return new
 
 
@@ -59,8 +61,11 @@ def _record(buf, cnt, t, h, t_new, y, F):
     buf = _grow(buf, cnt[0] + 1)
     rec = buf[cnt[0]]
     rec[0], rec[1], rec[2] = t, h, t_new
-    rec[RECORD:RECORD + n] = y
-    rec[RECORD + n:] = F.ravel()
+    for i in range(n):  # element loops, not slice copies (see _grow)
+        rec[RECORD + i] = y[i]
+    stages = F.ravel()
+    for i in range(stages.size):
+        rec[RECORD + n + i] = stages[i]
     cnt[0] += 1
     return buf
 
@@ -163,7 +168,8 @@ def _step(M, t, y, f, h_abs, min_step, t_bound, K, ytmp, y_new, rtol, atol, seg_
         t_new = min(t + h_abs, t_bound)
         h = t_new - t
         h_abs = abs(h)
-        K[0] = f
+        for i in range(n):
+            K[0, i] = f[i]
         failed = not _stages(M, t, y, h, K, ytmp, y_new, seg_end, stats)
         if failed:  # a stage left the states the gas can take (a trial step too long): retry shorter
             h_abs *= MIN_FACTOR
@@ -246,11 +252,13 @@ def piece(M, wq, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_steps, 
                 y_ev = np.empty(n)
                 dense_eval(rec, n, t_ev, y_ev)
                 return OK, t_ev, y_ev, first, t, y, buf
-            g[:] = gnew
-        y_old[:] = y
+            for q in range(g.size):  # element loops, not slice copies (see _grow)
+                g[q] = gnew[q]
+        for i in range(n):
+            y_old[i] = y[i]
+            y[i] = y_new[i]
+            f[i] = K[N_STAGES, i]
         t = t_new
-        y[:] = y_new
-        f[:] = K[N_STAGES]
         if t >= t_bound:
             return OK, t, y, -1, t, y_old, buf
 

@@ -16,9 +16,9 @@ import numpy as np
 from numba import njit
 
 from exchange.engine.flows import exchange_area, exchange_flow
-from exchange.engine.gas import states
+from exchange.engine.gas import reset_temperature_guesses, states
 from exchange.engine.inflators import inflator_flow
-from exchange.engine.layout import CavityFloat, ExchangeInt, InflatorFloat, StateColumn, open_state_of
+from exchange.engine.layout import ExchangeInt, InflatorFloat, StateColumn, open_state_of
 
 __all__ = ["HistoryLayout", "history_rows", "history", "segment_states"]
 
@@ -55,7 +55,7 @@ def history_rows(M, ys, idx, eqs, ops, ivs, times, ycols):
     guesses start from the cavities' initial temperatures."""
     nc, ne, ni = M.cavity_int.shape[0], M.exchange_int.shape[0], M.inflator_int.shape[0]
     saved = (M.equalised.copy(), M.open_state.copy(), M.interval.copy())
-    M.temperature_guess[:] = M.cavity_float[:, CavityFloat.T0]
+    reset_temperature_guesses(M)
     e0 = 1 + 4 * nc
     i0 = e0 + 2 * ne
     width = i0 + 2 * ni
@@ -64,7 +64,7 @@ def history_rows(M, ys, idx, eqs, ops, ivs, times, ycols):
     for r in range(times.size):
         t, y, i = times[r], ys[r], idx[r]
         if i != loaded:  # the discrete state of the row's segment
-            M.equalised[:], M.open_state[:], M.interval[:] = eqs[i], ops[i], ivs[i]
+            _load_discrete_state(M, eqs[i], ops[i], ivs[i])
             loaded = i
         ok &= states(M, t, y)
         out[r, 0] = t
@@ -80,8 +80,16 @@ def history_rows(M, ys, idx, eqs, ops, ivs, times, ycols):
             out[r, i0 + 2 * q + 1] = T_in
         for c in range(ycols.size):
             out[r, width + c] = y[ycols[c]]
-    M.equalised[:], M.open_state[:], M.interval[:] = saved
+    _load_discrete_state(M, saved[0], saved[1], saved[2])
     return ok, out
+
+
+@njit(cache=True)
+def _load_discrete_state(M, equalised, open_state, interval):
+    """The model's equalised flags, open states and the dynamic body's area intervals (element by element: a slice
+    copy's shape-error path costs numba seconds to compile)."""
+    for j in range(M.equalised.size):
+        M.equalised[j], M.open_state[j], M.interval[j] = equalised[j], open_state[j], interval[j]
 
 
 def segment_states(modes, pop_vents) -> tuple:

@@ -14,8 +14,8 @@ import numpy as np
 from numba import njit
 
 from cavity.rk_compiled import RECORD, dense_state, segment_of
-from exchange.engine.gas import states
-from exchange.engine.layout import CavityFloat, StateColumn
+from exchange.engine.gas import reset_temperature_guesses, states
+from exchange.engine.layout import StateColumn
 
 __all__ = ["pressure_at", "bounded_minimum_of_minus_p", "peak_pressures", "peaks"]
 
@@ -117,12 +117,13 @@ def peak_pressures(M, recs, segs, ts):
     :func:`cases.results.readback.refine_peak` does (an end only if the pressure rises inside)."""
     nc, m = M.cavity_int.shape[0], ts.size
     y = np.empty((recs.shape[1] - RECORD) // 8)
-    M.temperature_guess[:] = M.cavity_float[:, CavityFloat.T0]
+    reset_temperature_guesses(M)
     ps = np.empty((m, nc))
     ok = True
     for r in range(m):
         ok &= not math.isnan(pressure_at(M, recs, segs, 0, ts[r], y))
-        ps[r] = M.state[:, StateColumn.P]
+        for c in range(nc):  # element by element (see reset_temperature_guesses)
+            ps[r, c] = M.state[c, StateColumn.P]
     out = np.empty((nc, 2))
     for c in range(nc):
         k = np.argmax(ps[:, c])
