@@ -1,5 +1,6 @@
 """What numba compilation costs a user: each figure in CPU seconds, measured in a temporary copy of the package with
-an empty cache (numba caches beside the sources, so a copy starts cold).
+an empty cache (numba caches beside the sources, so a copy starts cold) and an empty user cache
+(``VENTSIM_CACHE_DIR`` inside the copy: no wrapped-volume fit from an earlier run), as on a new machine.
 
 - cold warm-up: ``python -m cases.warmup`` on an empty cache, with the CPU each kernel's first compile took
   (numba's compile events; a caller's time includes the callees it compiled);
@@ -90,7 +91,8 @@ def copy_tree(dest: Path, rev, source: Path = ROOT) -> Path:
 
 def cpu_of(tree: Path, args: list) -> tuple[float, str]:
     """(CPU seconds of a child python with ``args`` run in ``tree``, its stdout)."""
-    env = dict(os.environ, PYTHONPATH=str(tree), PYTHONDONTWRITEBYTECODE="1")
+    env = dict(os.environ, PYTHONPATH=str(tree), PYTHONDONTWRITEBYTECODE="1",
+               VENTSIM_CACHE_DIR=str(tree / ".user-cache"))  # no wrapped-volume fits kept from other runs
     env.pop("NUMBA_CACHE_DIR", None)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     out = subprocess.run([sys.executable] + args, cwd=tree, env=env, capture_output=True, text=True)
