@@ -1,8 +1,9 @@
 """Compile ventsim's numba kernels ahead of the first run: ``python3 -m cases.warmup`` (``bash .ci/setup`` runs it
-after installing). It runs a small scene on the compiled network path, one with a blocked leakage surface and
-one whose vent moves with its cavity's mesh series (the moving-area law Python calls too), quietly; numba caches the
+after installing). It runs a small scene on the compiled network path, one with a blocked leakage surface, one
+whose vent moves with its cavity's mesh series (the moving-area law Python calls too) and the README's main job (a
+cushion wrapped around a dynamic headform: the kernels that build its exact wrapped volume), quietly; numba caches the
 machine code beside the sources (``__pycache__``), so the first ``ventsim run`` starts at once instead of compiling.
-Every scene runs on the same compiled engine, so these three compile all of it. It also writes the bytecode of
+Every scene runs on the same compiled engine, so the first three compile all of it. It also writes the bytecode of
 ventsim's packages (``.pyc``, as ``pip install`` does for a regular install; an editable install writes it at the first
 import, unless ``PYTHONDONTWRITEBYTECODE`` is set): without it every run compiles its ~170 modules from source again,
 about 0.2 s of CPU (measured with ``compile()`` over the modules the main job imports). It prints each scene's
@@ -16,7 +17,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 PACKAGES = ("cases", "cavity", "exchange", "blockage", "ventsim")
-SCENES = ("verification/blowdown_choked.toml", "seal_vent.toml", "bag_unfold.toml")
+SCENES = ("verification/blowdown_choked.toml", "seal_vent.toml", "bag_unfold.toml", "airbag_impactor_dynamic.toml")
 
 
 def compile_bytecode(root: Path = HERE.parent) -> None:
