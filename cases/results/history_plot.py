@@ -13,9 +13,10 @@ lines and text are antialiased.
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 
 import numpy as np
+
+from cases.results.render_annotate import default_font
 
 __all__ = ["history_panels", "draw_history", "nice_ticks", "tick_labels", "PANEL_HEIGHT", "WIDTH"]
 
@@ -98,16 +99,6 @@ def tick_labels(ticks) -> tuple[list, str]:
     if decimals < 4 and any(abs(round(v, decimals) - v) > 1e-9 * max(abs(step), 1e-300) for v in ticks):
         decimals += 1  # a step of 2.5 x 10^k
     return [f"{v:.{decimals}f}" for v in ticks], multiplier
-
-
-@lru_cache(maxsize=8)
-def _font(size: int):
-    from PIL import ImageFont
-
-    try:
-        return ImageFont.load_default(size=size)
-    except TypeError:  # Pillow < 10.1: one bitmap size
-        return ImageFont.load_default()
 
 
 def _range(values_list) -> tuple[float, float]:
@@ -205,7 +196,7 @@ def _legend(draw, ax: _Axes, series, font, s: int) -> None:
 
 def _panel(image, draw, ax: _Axes, label: str, series, xticks, bottom: bool, s: int) -> None:
     """Grid, lines, frame, ticks, labels and legend of one panel."""
-    fonts = _font(13 * s), _font(11 * s)
+    fonts = default_font(13 * s), default_font(11 * s)
     x0, y0, x1, y1 = ax.box
     yticks = nice_ticks(*ax.ylim)
     xs = ax.pixels(xticks, np.full(len(xticks), ax.ylim[0]))[:, 0]
@@ -244,13 +235,13 @@ def draw_history(columns: list, history: np.ndarray, title: str = "", overlay: d
 
     panels = history_panels(columns, history, overlay) or [("", [])]
     s = SCALE
-    lines = _wrap(title, _font(13 * s), (WIDTH - 20) * s) if title else []
+    lines = _wrap(title, default_font(13 * s), (WIDTH - 20) * s) if title else []
     top = (TOP + 17 * max(len(lines) - 1, 0)) * s
     height = (PANEL_HEIGHT * len(panels) + 17 * max(len(lines) - 1, 0)) * s
     image = Image.new("RGB", (WIDTH * s, height), (255, 255, 255))
     draw = ImageDraw.Draw(image)
     for k, line in enumerate(lines):
-        draw.text((WIDTH * s / 2, (10 + 17 * k) * s), line, fill=(0, 0, 0), font=_font(13 * s), anchor="mt")
+        draw.text((WIDTH * s / 2, (10 + 17 * k) * s), line, fill=(0, 0, 0), font=default_font(13 * s), anchor="mt")
     xlim = _range([t for _, series in panels for _, t, _, _ in series] or [history[:, 0] * 1e3])
     xticks = nice_ticks(*xlim, most=8)
     size = (height - top - BOTTOM * s - GAP * s * (len(panels) - 1)) / len(panels)
@@ -259,5 +250,5 @@ def draw_history(columns: list, history: np.ndarray, title: str = "", overlay: d
         ax = _Axes((LEFT * s, y0, (WIDTH - RIGHT) * s, y0 + size), xlim, _range([v for _, _, v, _ in series]))
         _panel(image, draw, ax, label, series, xticks, k == len(panels) - 1, s)
     y = height - BOTTOM * s + 30 * s
-    draw.text(((LEFT + WIDTH - RIGHT) * s / 2, y), "time [ms]", fill=(0, 0, 0), font=_font(13 * s), anchor="mm")
+    draw.text(((LEFT + WIDTH - RIGHT) * s / 2, y), "time [ms]", fill=(0, 0, 0), font=default_font(13 * s), anchor="mm")
     return image.reduce(s)

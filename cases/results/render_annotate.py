@@ -83,7 +83,8 @@ def scale_bar_length(metres_per_pixel: float, target_pixels: float = 120.0) -> f
 
 
 @lru_cache(maxsize=8)
-def _font(size: int):
+def default_font(size: int):
+    """Pillow's default font at ``size`` pixels (one bitmap size before Pillow 10.1), kept per size."""
     from PIL import ImageFont
 
     try:
@@ -137,11 +138,11 @@ def annotate(view: np.ndarray, title: str, legend: str, camera, view_angle: floa
     canvas.paste(Image.fromarray(np.ascontiguousarray(view[..., :3])), (0, 0))
     draw = ImageDraw.Draw(canvas)
     scale = min(width / 800.0, height / 600.0)
-    big, small = _font(max(round(20 * scale), 9)), _font(max(round(12 * scale), 8))
+    big, small = default_font(max(round(20 * scale), 9)), default_font(max(round(12 * scale), 8))
     lines = title.split("\n")
     for k, line in enumerate(lines):
         draw.text((width / 2, 8 + k * round(24 * scale)), line, fill=(0, 0, 0),
-                  font=big if k == len(lines) - 1 else _font(max(round(15 * scale), 8)), anchor="mt")
+                  font=big if k == len(lines) - 1 else default_font(max(round(15 * scale), 8)), anchor="mt")
     top = 8 + len(lines) * round(24 * scale)
     _axes(draw, camera, (round(45 * scale), top + round(45 * scale)), 32 * scale, small)
     draw.text((8, height - 8), legend, fill=(0, 0, 0), font=small, anchor="ls")

@@ -254,13 +254,19 @@ def piece(M, wq, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_steps, 
                 return OK, t_ev, y_ev, first, t, y, buf
             for q in range(g.size):  # element loops, not slice copies (see _grow)
                 g[q] = gnew[q]
-        for i in range(n):
-            y_old[i] = y[i]
-            y[i] = y_new[i]
-            f[i] = K[N_STAGES, i]
+        _accept(y_old, y, y_new, f, K)
         t = t_new
         if t >= t_bound:
             return OK, t, y, -1, t, y_old, buf
+
+
+@njit(cache=True)
+def _accept(y_old, y, y_new, f, K):
+    """An accepted step: y_old ← y, y ← y_new, f ← the last stage (element by element, see _grow)."""
+    for i in range(y.size):
+        y_old[i] = y[i]
+        y[i] = y_new[i]
+        f[i] = K[N_STAGES, i]
 
 
 @njit(cache=True)
