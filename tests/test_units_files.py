@@ -118,6 +118,9 @@ def test_node_csv_in_mm_t_s(tmp_path):
         x["exchange"][0].update(leakage_nodes=f"data/nodes_{name}.csv", effective_area=f(3.0, AREA),
                                 contact_tolerance=f(0.1, LENGTH))
         twins[name] = scene_from_dict(x, tmp_path / f"{name}.toml")
+    converted = Path(twins["mm"].exchange[0].leakage_nodes)  # the mm file, converted to SI at load
+    assert twins["mm"].units.given == "mm-t-s" and converted.name != "nodes_mm.csv"
+    np.testing.assert_allclose(load_csv(converted), load_csv(d / "nodes_si.csv"), rtol=1e-15, atol=0.0)
     same_history(twins["si"], twins["mm"])
 
 

@@ -12,6 +12,7 @@ import numpy as np
 from numba import njit
 
 from cases.model.wrap_pieces import ConvexPlanes, node_pieces
+from exchange.engine.arrays import copy_into
 
 __all__ = ["ExactWrap", "exact_wrap"]
 
@@ -150,10 +151,9 @@ def _events(faces, touched, x0, ptr, s0, s1, u, w):
             if m == cap:
                 cap *= 2
                 pos2, delta2 = np.empty(cap), np.empty((cap, 4))
-                for i in range(m):  # element loops: an array-to-slice copy costs numba ~2 s to compile
-                    pos2[i] = pos[i]
-                    for r in range(4):
-                        delta2[i, r] = delta[i, r]
+                copy_into(pos2, pos[:m])
+                for i in range(m):
+                    copy_into(delta2[i], delta[i])
                 pos, delta = pos2, delta2
             pos[m] = bp[j]
             for r in range(4):

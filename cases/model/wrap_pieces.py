@@ -20,6 +20,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from exchange.engine.arrays import copy_into
+
 __all__ = ["ConvexPlanes", "convex_planes", "node_pieces", "WalkError"]
 
 #: A body with at most this many distinct planes lists every plane as every plane's neighbour.
@@ -211,14 +213,12 @@ def _argmax(x, normals, offsets):
 @njit(cache=True)
 def _grow(a, cap):
     out = np.empty(cap, a.dtype)
-    for i in range(len(a)):  # not out[:len(a)] = a: that slice copy costs numba ~2 s to compile
-        out[i] = a[i]
+    copy_into(out, a)
     return out
 
 
 @njit(cache=True)
 def _growf(a, cap):
     out = np.empty(cap)
-    for i in range(len(a)):
-        out[i] = a[i]
+    copy_into(out, a)
     return out

@@ -143,15 +143,14 @@ class Engine:
         self.unlock_pieces()  # the segment start locks one (exchange.engine.modes.lock_pieces)
         ei, ef = a.exchange_int, a.exchange_float
         for j in range(len(net.exchanges)):
-            pop_vent = ei[j, ExchangeInt.POP] == 1
+            pop_vent = self.pop_vents[j]
             a.equalised[j] = net.equalised[j]
             a.open_state[j] = open_state_of(pop_vent, net.popped[j], net.closed[j])
             a.hold_start[j] = math.nan if net.holding_since[j] is None else net.holding_since[j]
             base = net.area_at_activation[j]
             if pop_vent:
                 ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = base or 0.0
-            elif ei[j, ExchangeInt.DELTA_AREA] and ei[j, ExchangeInt.AREA] in (AreaKind.STEPS_OF_BODY,
-                                                                               AreaKind.SAMPLED_OF_BODY):
+            elif ei[j, ExchangeInt.DELTA_AREA] and self.by_body[j]:
                 ef[j, ExchangeFloat.AREA_AT_ACTIVATION] = math.nan if base is None else base
 
     def segment_mode(self, code) -> DiscreteState:

@@ -11,6 +11,7 @@ from cavity.gas_rows import mixture_row, range_of, row_cp, row_enthalpy, tempera
 from cavity.hydraulic import hydraulic_pressure
 from cavity.tolerances import R_UNIVERSAL as R_U
 
+from .arrays import copy_into
 from .hosted import hosted_state
 from .layout import LAW_LOAD, BodyColumn, CavityFloat, CavityInt, Energy, ExchangeInt, Fluid, StateColumn, VolumeKind
 from .tables import spline_piece_value, spline_value, table_slope, table_value
@@ -160,6 +161,5 @@ def states(M, t, y):
 @njit(cache=True)
 def reset_temperature_guesses(M):
     """Newton's first guesses of the cavities' temperatures: their initial temperatures (a run's or a read-back's
-    start). Element by element: numba compiles a slice copy's shape-error path for seconds."""
-    for c in range(M.temperature_guess.size):
-        M.temperature_guess[c] = M.cavity_float[c, CavityFloat.T0]
+    start)."""
+    copy_into(M.temperature_guess, M.cavity_float[:, CavityFloat.T0])

@@ -18,6 +18,7 @@ from numba import njit, objmode
 from cavity.rk_compiled import (A, A_EXTRA, B, C, C_EXTRA, ERROR_EXPONENT, MIN_FACTOR, N_STAGES, RECORD, SAFETY,
                                 Status, dense_eval, dense_F, error_norm, initial_h0, initial_step, step_factor)
 
+from .arrays import copy_into
 from .layout import segment_blocks
 from .modes import on_event, record_segment
 from .rhs import rhs
@@ -48,9 +49,8 @@ def _grow(buf, need):
     if need <= buf.shape[0]:
         return buf
     new = np.empty((max(need, 2 * buf.shape[0]), buf.shape[1]))
-    for i in range(buf.shape[0]):  # element loops: numba compiles an array-to-slice copy's error path for seconds
-        for j in range(buf.shape[1]):
-            new[i, j] = buf[i, j]
+    for i in range(buf.shape[0]):
+        copy_into(new[i], buf[i])
     return new
 
 
@@ -61,11 +61,8 @@ def _record(buf, cnt, t, h, t_new, y, F):
     buf = _grow(buf, cnt[0] + 1)
     rec = buf[cnt[0]]
     rec[0], rec[1], rec[2] = t, h, t_new
-    for i in range(n):  # element loops, not slice copies (see _grow)
-        rec[RECORD + i] = y[i]
-    stages = F.ravel()
-    for i in range(stages.size):
-        rec[RECORD + n + i] = stages[i]
+    copy_into(rec[RECORD:], y)
+    copy_into(rec[RECORD + n:], F.ravel())
     cnt[0] += 1
     return buf
 
@@ -168,8 +165,7 @@ def _step(M, t, y, f, h_abs, min_step, t_bound, K, ytmp, y_new, rtol, atol, seg_
         t_new = min(t + h_abs, t_bound)
         h = t_new - t
         h_abs = abs(h)
-        for i in range(n):
-            K[0, i] = f[i]
+        copy_into(K[0], f)
         failed = not _stages(M, t, y, h, K, ytmp, y_new, seg_end, stats)
         if failed:  # a stage left the states the gas can take (a trial step too long): retry shorter
             h_abs *= MIN_FACTOR
@@ -252,21 +248,13 @@ def piece(M, wq, wd, t0, y0, t_bound, seg_end, rtol, atol, max_step, max_steps, 
                 y_ev = np.empty(n)
                 dense_eval(rec, n, t_ev, y_ev)
                 return OK, t_ev, y_ev, first, t, y, buf
-            for q in range(g.size):  # element loops, not slice copies (see _grow)
-                g[q] = gnew[q]
-        _accept(y_old, y, y_new, f, K)
+            copy_into(g, gnew)
+        copy_into(y_old, y)
+        copy_into(y, y_new)
+        copy_into(f, K[N_STAGES])
         t = t_new
         if t >= t_bound:
             return OK, t, y, -1, t, y_old, buf
-
-
-@njit(cache=True)
-def _accept(y_old, y, y_new, f, K):
-    """An accepted step: y_old ← y, y ← y_new, f ← the last stage (element by element, see _grow)."""
-    for i in range(y.size):
-        y_old[i] = y[i]
-        y[i] = y_new[i]
-        f[i] = K[N_STAGES, i]
 
 
 @njit(cache=True)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from exchange.engine.arrays import copy_into
 from exchange.engine.flows import exchange_area, exchange_flow
 from exchange.engine.gas import reset_temperature_guesses, states
 from exchange.engine.inflators import inflator_flow
@@ -86,10 +87,10 @@ def history_rows(M, ys, idx, eqs, ops, ivs, times, ycols):
 
 @njit(cache=True)
 def _load_discrete_state(M, equalised, open_state, interval):
-    """The model's equalised flags, open states and the dynamic body's area intervals (element by element: a slice
-    copy's shape-error path costs numba seconds to compile)."""
-    for j in range(M.equalised.size):
-        M.equalised[j], M.open_state[j], M.interval[j] = equalised[j], open_state[j], interval[j]
+    """The model's equalised flags, open states and the dynamic body's area intervals."""
+    copy_into(M.equalised, equalised)
+    copy_into(M.open_state, open_state)
+    copy_into(M.interval, interval)
 
 
 def segment_states(modes, pop_vents) -> tuple:

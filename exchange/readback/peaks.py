@@ -14,6 +14,7 @@ import numpy as np
 from numba import njit
 
 from cavity.rk_compiled import RECORD, dense_state, segment_of
+from exchange.engine.arrays import copy_into
 from exchange.engine.gas import reset_temperature_guesses, states
 from exchange.engine.layout import StateColumn
 
@@ -122,8 +123,7 @@ def peak_pressures(M, recs, segs, ts):
     ok = True
     for r in range(m):
         ok &= not math.isnan(pressure_at(M, recs, segs, 0, ts[r], y))
-        for c in range(nc):  # element by element (see reset_temperature_guesses)
-            ps[r, c] = M.state[c, StateColumn.P]
+        copy_into(ps[r], M.state[:, StateColumn.P])
     out = np.empty((nc, 2))
     for c in range(nc):
         k = np.argmax(ps[:, c])
